@@ -1,0 +1,37 @@
+#pragma once
+// Per-step bookkeeping: energies, momentum, wall reactions (DESIGN §4 "Energy and momentum").
+#include <string>
+#include <vector>
+
+#include "fragmpm/mpm/types.hpp"
+
+namespace fragmpm::mpm {
+
+/// Running totals that a restart must restore exactly.
+struct EnergyAccumulators {
+  double wall_work = 0.0;      ///< work done by walls on the material [J per unit thickness in 2D]
+  double gravity_work = 0.0;   ///< work done by gravity [J]
+  double friction_work = 0.0;  ///< dissipated by friction at walls and contacts [J]
+  double dissipated = 0.0;     ///< dissipated by damage [J]
+  /// Kinetic energy removed when the grid contact stops the approach at a node: the MPM node-level
+  /// impact is perfectly inelastic, so this is a modelling loss, kept apart from the balance error.
+  double impact_loss = 0.0;
+  double initial_energy = 0.0; ///< kinetic + strain at step 0 [J]
+};
+
+/// One row of /series, recorded after each step.
+template <int D>
+struct SeriesRow {
+  long long step = 0;
+  double time = 0.0, dt = 0.0;
+  double kinetic = 0.0, strain = 0.0, thermal = 0.0;
+  EnergyAccumulators totals;
+  /// (kinetic + strain + dissipated + friction_work + impact_loss) − (initial + wall_work + gravity_work);
+  /// zero for an exact conservative scheme.
+  double balance_error = 0.0;
+  Vec<D> momentum = Vec<D>::Zero();
+  std::vector<Vec<D>> wall_force;         ///< reaction exerted by the material on each wall [N per unit thickness]
+  std::vector<Vec<D>> wall_displacement;  ///< [m]
+};
+
+}  // namespace fragmpm::mpm

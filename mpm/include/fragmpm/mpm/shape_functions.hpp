@@ -1,0 +1,179 @@
+#pragma once
+// Particle–node weights S̄_ip and gradients ∇S̄_ip for the linear, uGIMP and CPDI shape functions.
+// A stencil lists (node, weight, gradient) entries; a node may appear more than once (CPDI corners
+// sharing a cell), which is harmless because every use is a sum over the entries.
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "fragmpm/mpm/grid_index.hpp"
+#include "fragmpm/mpm/problem.hpp"
+
+namespace fragmpm::mpm {
+
+template <int D>
+struct Stencil {
+  /// CPDI: 2^D corners × 2^D nodes each.
+  static constexpr int capacity = (1 << D) * (1 << D);
+  int count = 0;
+  std::array<std::int64_t, capacity> node;
+  std::array<double, capacity> weight;
+  std::array<Vec<D>, capacity> gradient;
+};
+
+namespace detail {
+/// Linear hat values at the 2^D nodes of the cell holding x (unclamped; outside the active grid is
+/// the caller's responsibility). Calls emit(global node, value, gradient of the hat).
+template <int D, class Emit>
+inline void linear_hat(const Vec<D>& x, const GridIndex<D>& grid, Emit&& emit) {
+  IVec<D> base;
+  Vec<D> frac;
+  for (int k = 0; k < D; ++k) {
+    const double s = (x[k] - grid.origin[k]) * grid.inverse_cell_size;
+    const double f = std::floor(s);
+    base[k] = static_cast<std::int64_t>(f);
+    frac[k] = s - f;
+  }
+  for (int corner = 0; corner < (1 << D); ++corner) {
+    IVec<D> node = base;
+    double value = 1.0;
+    Vec<D> gradient = Vec<D>::Zero();
+    std::array<double, D> w1d{}, dw1d{};
+    for (int k = 0; k < D; ++k) {
+      const bool upper = (corner >> k) & 1;
+      node[k] += upper;
+      w1d[k] = upper ? frac[k] : 1.0 - frac[k];
+      dw1d[k] = (upper ? 1.0 : -1.0) * grid.inverse_cell_size;
+      value *= w1d[k];
+    }
+    for (int k = 0; k < D; ++k) {
+      double g = dw1d[k];
+      for (int j = 0; j < D; ++j)
+        if (j != k) g *= w1d[j];
+      gradient[k] = g;
+    }
+    emit(node, value, gradient);
+  }
+}
+
+/// uGIMP 1D weight and derivative for distance xi = x_p − X_i, cell size h, particle half-length lp.
+inline void gimp_1d(double xi, double h, double lp, double& w, double& dw) {
+  const double r = std::abs(xi);
+  const double sign = xi < 0.0 ? -1.0 : 1.0;
+  if (r < lp) {
+    w = 1.0 - (xi * xi + lp * lp) / (2.0 * h * lp);
+    dw = -xi / (h * lp);
+  } else if (r < h - lp) {
+    w = 1.0 - r / h;
+    dw = -sign / h;
+  } else if (r < h + lp) {
+    const double t = h + lp - r;
+    w = t * t / (4.0 * h * lp);
+    dw = -sign * t / (2.0 * h * lp);
+  } else {
+    w = 0.0;
+    dw = 0.0;
+  }
+}
+}  // namespace detail
+
+/// Standard linear (bilinear in 2D) shape functions at the particle position.
+template <int D>
+inline void linear_stencil(const Vec<D>& x, const GridIndex<D>& grid, Stencil<D>& stencil) {
+  stencil.count = 0;
+  detail::linear_hat<D>(x, grid, [&](const IVec<D>& node, double value, const Vec<D>& gradient) {
+    const int e = stencil.count++;
+    stencil.node[e] = grid.linear(node);
+    stencil.weight[e] = value;
+    stencil.gradient[e] = gradient;
+  });
+}
+
+/// Undeformed GIMP: the particle is a box of half-length `half_length` per direction that does not
+/// deform; S̄ is the tensor product of the 1D convolution of the hat with the box.
+template <int D>
+inline void ugimp_stencil(const Vec<D>& x, const Vec<D>& half_length, const GridIndex<D>& grid,
+                          Stencil<D>& stencil) {
+  stencil.count = 0;
+  const double h = grid.cell_size;
+  IVec<D> first;
+  for (int k = 0; k < D; ++k)
+    first[k] = static_cast<std::int64_t>(
+        std::floor((x[k] - half_length[k] - grid.origin[k]) * grid.inverse_cell_size));
+  // Support is h + lp ≤ 1.5 h, so three nodes per direction cover it.
+  constexpr int per_direction = 3;
+  int total = 1;
+  for (int k = 0; k < D; ++k) total *= per_direction;
+  for (int combo = 0; combo < total; ++combo) {
+    IVec<D> node;
+    std::array<double, D> w1d{}, dw1d{};
+    double value = 1.0;
+    int rest = combo;
+    for (int k = 0; k < D; ++k) {
+      node[k] = first[k] + rest % per_direction;
+      rest /= per_direction;
+      const double xi = x[k] - (grid.origin[k] + h * static_cast<double>(node[k]));
+      detail::gimp_1d(xi, h, half_length[k], w1d[k], dw1d[k]);
+      value *= w1d[k];
+    }
+    if (value == 0.0) continue;
+    Vec<D> gradient = Vec<D>::Zero();
+    for (int k = 0; k < D; ++k) {
+      double g = dw1d[k];
+      for (int j = 0; j < D; ++j)
+        if (j != k) g *= w1d[j];
+      gradient[k] = g;
+    }
+    const int e = stencil.count++;
+    stencil.node[e] = grid.linear(node);
+    stencil.weight[e] = value;
+    stencil.gradient[e] = gradient;
+  }
+}
+
+/// CPDI (000 eq. 52-53; 001 §1.1). The domain is the parallelepiped spanned by the full edge vectors
+/// r_k (columns of `domain`), corners x ± r1/2 ± r2/2. Interpolating the hat N_i bilinearly between
+/// the corner values gives S̄_ip = mean_c N_i(x_c) and, by the divergence theorem with the map
+/// x = x_p + Σ ξ_k r_k/2, ∇S̄_ip = Σ_c N_i(x_c) |det J| J^{-T} s_c / V with J = domain/2 and
+/// s_c ∈ {±1}^D the corner's signs; |det J|/V = 2^{-D}, so the corner vector is J^{-T} s_c / 2^D
+/// = domain^{-T} s_c · 2^{1-D}. In 2D this is exactly eq. (53) (its 1/(2V) times the cofactor of
+/// the full edge vectors).
+template <int D>
+inline void cpdi_stencil(const Vec<D>& x, const Mat<D>& domain, const GridIndex<D>& grid,
+                         Stencil<D>& stencil) {
+  stencil.count = 0;
+  const Mat<D> inverse_transpose = domain.inverse().transpose();
+  constexpr double corner_share = 1.0 / double(1 << D);
+  constexpr double gradient_scale = 2.0 / double(1 << D);
+  for (int corner = 0; corner < (1 << D); ++corner) {
+    Vec<D> signs;
+    for (int k = 0; k < D; ++k) signs[k] = ((corner >> k) & 1) ? 1.0 : -1.0;
+    const Vec<D> corner_position = x + 0.5 * domain * signs;
+    const Vec<D> corner_vector = gradient_scale * (inverse_transpose * signs);
+    detail::linear_hat<D>(corner_position, grid,
+                          [&](const IVec<D>& node, double value, const Vec<D>&) {
+                            const int e = stencil.count++;
+                            stencil.node[e] = grid.linear(node);
+                            stencil.weight[e] = corner_share * value;
+                            stencil.gradient[e] = value * corner_vector;
+                          });
+  }
+}
+
+/// Axis-aligned bounds (lower, upper) of the region a particle's stencil touches [m].
+template <int D>
+inline void stencil_bounds(ShapeFunctionKind kind, const Vec<D>& x, const Mat<D>& domain,
+                           const Vec<D>& half_length, Vec<D>& lower, Vec<D>& upper) {
+  switch (kind) {
+    case ShapeFunctionKind::linear: lower = upper = x; return;
+    case ShapeFunctionKind::ugimp: lower = x - half_length; upper = x + half_length; return;
+    case ShapeFunctionKind::cpdi: {
+      const Vec<D> reach = 0.5 * domain.cwiseAbs().rowwise().sum();
+      lower = x - reach;
+      upper = x + reach;
+      return;
+    }
+  }
+}
+
+}  // namespace fragmpm::mpm

@@ -1,0 +1,67 @@
+#pragma once
+// The explicit DP-MPM step (DESIGN §4), update-stress-last with a FLIP/PIC blend (000 eq. 64-66).
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fragmpm/mpm/problem.hpp"
+#include "fragmpm/mpm/series.hpp"
+
+namespace fragmpm::mpm {
+
+/// Why a step could not be taken. The run stops with exit code 3 and keeps the last good frame.
+struct NumericalFailure {
+  long long step = 0;
+  double time = 0.0;
+  long long particle = -1;
+  std::string what;  ///< full diagnostic: which check failed and the particle's field values
+};
+
+/// Which modules run for this problem and why (logged, stored in /meta).
+struct ModuleDecision {
+  std::string module;
+  bool active = false;
+  std::string reason;
+};
+
+template <int D>
+std::vector<ModuleDecision> plan_modules(const Problem<D>& problem);
+
+/// Largest stable explicit Δt for the current particle state: C_cfl h / max_p(c_p + |v_p|) with
+/// c_p = sqrt((K + 4G/3) / ρ_p), ρ_p = ρ0 / J.  [s]
+template <int D>
+double stable_time_step(const Problem<D>& problem, const Particles<D>& particles, double cfl);
+
+template <int D>
+class Solver {
+ public:
+  explicit Solver(Problem<D> problem);
+  ~Solver();
+  Solver(Solver&&) noexcept;
+  Solver& operator=(Solver&&) noexcept;
+
+  /// Advances one step. Returns a failure instead of throwing; the in-memory state is then not
+  /// usable, and the caller keeps the last good frame on disk.
+  std::optional<NumericalFailure> step();
+
+  const Problem<D>& problem() const;
+  const Particles<D>& particles() const;
+  Particles<D>& particles();
+  double time() const;
+  long long step_count() const;
+  const EnergyAccumulators& accumulators() const;
+  const SeriesRow<D>& last_row() const;   ///< row of the most recent step (or the initial state)
+  Vec<D> wall_displacement(std::size_t wall) const;
+  /// CFL limit (with C_cfl) from the current state: the adaptive Δt of the next step [s].
+  double stable_dt() const;
+
+  /// Restores a checkpointed state (time, step, accumulators, particles must come from the same problem).
+  void restore(double time, long long step, const EnergyAccumulators& totals, Particles<D> particles);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fragmpm::mpm

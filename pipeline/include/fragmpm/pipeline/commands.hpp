@@ -1,0 +1,17 @@
+#pragma once
+// Subcommands of `fragmpm`. Each add_*_command registers its CLI11 subcommand; its callback runs the
+// command and stores the process exit code in `result` (0 ok, 2 bad input, 3 numerical failure,
+// 1 anything else).
+#include <CLI/CLI.hpp>
+
+namespace fragmpm::pipeline {
+
+struct CommandResult {
+  int exit_code = 0;
+};
+
+void add_run_command(CLI::App& app, CommandResult& result);
+void add_verify_command(CLI::App& app, CommandResult& result);
+void add_bench_command(CLI::App& app, CommandResult& result);
+
+}  // namespace fragmpm::pipeline
