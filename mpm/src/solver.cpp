@@ -434,8 +434,8 @@ struct Solver<D>::Impl {
     return grid_to_particles<Kind>(dt);
   }
 
-  std::optional<NumericalFailure> take_step() {
-    const double dt = choose_dt();
+  std::optional<NumericalFailure> take_step(double dt_cap) {
+    const double dt = std::min(choose_dt(), dt_cap);
     if (!(dt > 0.0) || !std::isfinite(dt)) {
       NumericalFailure failure{step, time, -1,
                                "time step is not positive and finite (dt = " + std::to_string(dt) +
@@ -476,7 +476,7 @@ template <int D>
 Solver<D>& Solver<D>::operator=(Solver&&) noexcept = default;
 
 template <int D>
-std::optional<NumericalFailure> Solver<D>::step() { return impl_->take_step(); }
+std::optional<NumericalFailure> Solver<D>::step(double dt_cap) { return impl_->take_step(dt_cap); }
 template <int D>
 const Problem<D>& Solver<D>::problem() const { return impl_->problem; }
 template <int D>

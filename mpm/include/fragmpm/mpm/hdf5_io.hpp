@@ -101,9 +101,7 @@ class Group : public Object {
   template <Element T>
   Dataset write(const std::string& path, const T* data, std::size_t count, const Dims& dims) const;
   template <Element T>
-  Dataset write(const std::string& path, const std::vector<T>& data, const Dims& dims) const {
-    return write<T>(path, data.data(), data.size(), dims);
-  }
+  Dataset write(const std::string& path, const std::vector<T>& data, const Dims& dims) const;
   /// Reads a whole dataset, converting to T (integer→floating and integer→integer conversions are
   /// allowed; floating→integer is refused).
   template <Element T>
@@ -156,6 +154,11 @@ class File : public Object {
  protected:
   using Object::Object;
 };
+
+template <Element T>
+Dataset Group::write(const std::string& path, const std::vector<T>& data, const Dims& dims) const {
+  return write<T>(path, data.data(), data.size(), dims);
+}
 
 template <Element T>
 void Dataset::append_rows(const std::vector<T>& data) const {

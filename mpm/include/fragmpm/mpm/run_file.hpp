@@ -14,16 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "fragmpm/mpm/hdf5_io.hpp"  // RunFileError: unreadable, missing or inconsistent run files
 #include "fragmpm/mpm/particles.hpp"
 #include "fragmpm/mpm/series.hpp"
 #include "fragmpm/mpm/solver.hpp"
 
 namespace fragmpm::mpm {
-
-/// Raised for unreadable, missing or inconsistent run files; the message names the file and object.
-struct RunFileError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 struct RunMeta {
   std::string scene_path;

@@ -1,5 +1,6 @@
 #pragma once
 // The explicit DP-MPM step (DESIGN §4), update-stress-last with a FLIP/PIC blend (000 eq. 64-66).
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -43,7 +44,8 @@ class Solver {
 
   /// Advances one step. Returns a failure instead of throwing; the in-memory state is then not
   /// usable, and the caller keeps the last good frame on disk.
-  std::optional<NumericalFailure> step();
+  /// `dt_cap` [s] shortens an adaptive step so that output and end times are hit exactly.
+  std::optional<NumericalFailure> step(double dt_cap = std::numeric_limits<double>::infinity());
 
   const Problem<D>& problem() const;
   const Particles<D>& particles() const;

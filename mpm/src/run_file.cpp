@@ -1,0 +1,650 @@
+// The run file of DESIGN §5 on top of hdf5_io; see run_file.hpp for the layout.
+#include "fragmpm/mpm/run_file.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <set>
+
+#include "fragmpm/mpm/hdf5_io.hpp"
+#include "fragmpm/mpm/xdmf.hpp"
+
+#ifndef FRAGMPM_VERSION
+#define FRAGMPM_VERSION "unknown"
+#endif
+#ifndef FRAGMPM_GIT_HASH
+#define FRAGMPM_GIT_HASH "unknown"
+#endif
+
+namespace fragmpm::mpm {
+
+const std::vector<std::string>& all_frame_fields() {
+  static const std::vector<std::string> fields{"x",      "v",      "F",       "volume0", "mass",
+                                               "r1",     "r2",     "stress",  "damage",  "surface",
+                                               "body",   "material", "temperature"};
+  return fields;
+}
+
+namespace {
+
+constexpr const char* kModuleSeparator = " \u2014 ";  // "name: on — reason"
+
+std::string frame_name(int index) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "%06d", index);
+  return buffer;
+}
+
+/// Units (and a hint on layout) of every dataset, for users' own scripts.
+struct FieldInfo {
+  const char* units;
+  const char* description;
+  XdmfField::Kind kind;
+  XdmfField::Number number;
+};
+
+template <int D>
+FieldInfo field_info(const std::string& name) {
+  using K = XdmfField::Kind;
+  using N = XdmfField::Number;
+  const bool plane = D == 2;
+  if (name == "x") return {"m", "position, N x D", K::vector, N::float64};
+  if (name == "v") return {"m/s", "velocity, N x D", K::vector, N::float64};
+  if (name == "F") return {"1", "deformation gradient, N x D x D, F[p][i][j] = F_ij", K::tensor, N::float64};
+  if (name == "volume0")
+    return {plane ? "m^2 (per unit thickness)" : "m^3", "initial volume, N", K::scalar, N::float64};
+  if (name == "mass") return {plane ? "kg/m (per unit thickness)" : "kg", "mass, N", K::scalar, N::float64};
+  if (name == "r1") return {"m", "CPDI domain edge vector r1, N x D", K::vector, N::float64};
+  if (name == "r2") return {"m", "CPDI domain edge vector r2, N x D", K::vector, N::float64};
+  if (name == "stress")
+    return {"Pa", "Cauchy stress, N x D x D, stress[p][i][j] = sigma_ij", K::tensor, N::float64};
+  if (name == "damage") return {"1", "damage d in [0, 1], N", K::scalar, N::float64};
+  if (name == "surface") return {"1", "1 = on a body boundary, N", K::scalar, N::uint8};
+  if (name == "body") return {"1", "body id, N", K::scalar, N::int32};
+  if (name == "material") return {"1", "index into the scene's material list, N", K::scalar, N::int32};
+  return {"K", "temperature, N", K::scalar, N::float64};  // "temperature"
+}
+
+// ---- packing between Eigen arrays of structures and row-major HDF5 buffers
+
+template <int D>
+std::vector<double> pack(const std::vector<Vec<D>>& values) {
+  std::vector<double> out(values.size() * D);
+  for (std::size_t p = 0; p < values.size(); ++p)
+    for (int i = 0; i < D; ++i) out[p * D + i] = values[p](i);
+  return out;
+}
+
+/// N x D x D row-major: out[p][i][j] = m_p(i, j) (Eigen stores column-major, so copy explicitly).
+template <int D>
+std::vector<double> pack(const std::vector<Mat<D>>& values) {
+  std::vector<double> out(values.size() * D * D);
+  for (std::size_t p = 0; p < values.size(); ++p)
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) out[(p * D + i) * D + j] = values[p](i, j);
+  return out;
+}
+
+template <int D>
+std::vector<double> pack_column(const std::vector<Mat<D>>& values, int column) {
+  std::vector<double> out(values.size() * D);
+  for (std::size_t p = 0; p < values.size(); ++p)
+    for (int i = 0; i < D; ++i) out[p * D + i] = values[p](i, column);
+  return out;
+}
+
+/// Reads a dataset and checks its shape, so a foreign or damaged file gives a clear message.
+template <h5::Element T>
+std::vector<T> read_shaped(const h5::Group& group, const std::string& name, const h5::Dims& expected) {
+  h5::Array<T> array = group.read<T>(name);
+  if (array.dims != expected) {
+    auto text = [](const h5::Dims& dims) {
+      std::string s;
+      for (std::size_t k = 0; k < dims.size(); ++k) s += (k ? "x" : "") + std::to_string(dims[k]);
+      return "(" + s + ")";
+    };
+    throw RunFileError(group.describe("dataset '" + name + "' has shape " + text(array.dims) +
+                                      ", expected " + text(expected)));
+  }
+  return std::move(array.values);
+}
+
+template <int D>
+void unpack(const std::vector<double>& in, std::vector<Vec<D>>& out) {
+  for (std::size_t p = 0; p < out.size(); ++p)
+    for (int i = 0; i < D; ++i) out[p](i) = in[p * D + i];
+}
+
+template <int D>
+void unpack(const std::vector<double>& in, std::vector<Mat<D>>& out) {
+  for (std::size_t p = 0; p < out.size(); ++p)
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) out[p](i, j) = in[(p * D + i) * D + j];
+}
+
+template <int D>
+void unpack_column(const std::vector<double>& in, std::vector<Mat<D>>& out, int column) {
+  for (std::size_t p = 0; p < out.size(); ++p)
+    for (int i = 0; i < D; ++i) out[p](i, column) = in[p * D + i];
+}
+
+/// Number of entries of the particle array behind a frame field (to catch inconsistent input).
+template <int D>
+std::size_t field_size(const Particles<D>& p, const std::string& field) {
+  if (field == "x") return p.x.size();
+  if (field == "v") return p.v.size();
+  if (field == "F") return p.F.size();
+  if (field == "volume0") return p.volume0.size();
+  if (field == "mass") return p.mass.size();
+  if (field == "r1" || field == "r2") return p.domain.size();
+  if (field == "stress") return p.stress.size();
+  if (field == "damage") return p.damage.size();
+  if (field == "surface") return p.surface.size();
+  if (field == "body") return p.body.size();
+  if (field == "material") return p.material.size();
+  return p.temperature.size();
+}
+
+/// Writes one frame field; r1 and r2 are columns 0 and 1 of the CPDI domain matrix.
+template <int D>
+h5::Dataset write_field(const h5::Group& g, const Particles<D>& p, const std::string& field) {
+  const std::size_t n = p.size(), d = D;
+  if (field == "x") return g.write(field, pack<D>(p.x), {n, d});
+  if (field == "v") return g.write(field, pack<D>(p.v), {n, d});
+  if (field == "F") return g.write(field, pack<D>(p.F), {n, d, d});
+  if (field == "volume0") return g.write(field, p.volume0, {n});
+  if (field == "mass") return g.write(field, p.mass, {n});
+  if (field == "r1") return g.write(field, pack_column<D>(p.domain, 0), {n, d});
+  if (field == "r2") return g.write(field, pack_column<D>(p.domain, 1), {n, d});
+  if (field == "stress") return g.write(field, pack<D>(p.stress), {n, d, d});
+  if (field == "damage") return g.write(field, p.damage, {n});
+  if (field == "surface") return g.write(field, p.surface, {n});
+  if (field == "body") return g.write(field, p.body, {n});
+  if (field == "material") return g.write(field, p.material, {n});
+  return g.write(field, p.temperature, {n});
+}
+
+// ---- /meta
+
+std::string module_lines(const std::vector<ModuleDecision>& modules) {
+  std::string text;
+  for (const ModuleDecision& m : modules) {
+    std::string reason = m.reason;
+    std::replace(reason.begin(), reason.end(), '\n', ' ');  // one line per module
+    text += m.module + ": " + (m.active ? "on" : "off");
+    if (!reason.empty()) text += kModuleSeparator + reason;
+    text += '\n';
+  }
+  return text;
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    lines.push_back(text.substr(start, end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return lines;
+}
+
+std::vector<ModuleDecision> parse_modules(const h5::Group& meta) {
+  std::vector<ModuleDecision> modules;
+  for (const std::string& line : split_lines(meta.attribute_string("modules"))) {
+    const std::size_t colon = line.find(": ");
+    ModuleDecision m;
+    m.module = line.substr(0, colon);
+    std::string rest = colon == std::string::npos ? "" : line.substr(colon + 2);
+    const std::size_t separator = rest.find(kModuleSeparator);
+    const std::string state = rest.substr(0, separator);
+    if (colon == std::string::npos || (state != "on" && state != "off"))
+      throw RunFileError(meta.describe("attribute 'modules': line '" + line +
+                                       "' is not 'name: on|off — reason'"));
+    m.active = state == "on";
+    if (separator != std::string::npos)
+      m.reason = rest.substr(separator + std::string(kModuleSeparator).size());
+    modules.push_back(std::move(m));
+  }
+  return modules;
+}
+
+// ---- /series columns: name, units, how to read the value from a row
+
+template <int D>
+struct ScalarColumn {
+  const char* name;
+  const char* description;
+  bool energy;  ///< units J (per unit thickness in 2D); otherwise `units`
+  const char* units;
+  std::function<double(const SeriesRow<D>&)> value;
+};
+
+template <int D>
+const std::vector<ScalarColumn<D>>& scalar_columns() {
+  using R = SeriesRow<D>;
+  static const std::vector<ScalarColumn<D>> columns{
+      {"time", "time at the end of the step", false, "s", [](const R& r) { return r.time; }},
+      {"dt", "step length", false, "s", [](const R& r) { return r.dt; }},
+      {"kinetic", "kinetic energy", true, "", [](const R& r) { return r.kinetic; }},
+      {"strain", "stored strain energy", true, "", [](const R& r) { return r.strain; }},
+      {"thermal", "thermal energy", true, "", [](const R& r) { return r.thermal; }},
+      {"dissipated", "dissipated by damage (cumulative)", true, "",
+       [](const R& r) { return r.totals.dissipated; }},
+      {"friction_work", "dissipated by friction (cumulative)", true, "",
+       [](const R& r) { return r.totals.friction_work; }},
+      {"wall_work", "work of the walls on the material (cumulative)", true, "",
+       [](const R& r) { return r.totals.wall_work; }},
+      {"gravity_work", "work of gravity (cumulative)", true, "",
+       [](const R& r) { return r.totals.gravity_work; }},
+      {"impact_loss", "kinetic energy lost in inelastic grid impacts (cumulative)", true, "",
+       [](const R& r) { return r.totals.impact_loss; }},
+      {"balance_error", "energy balance error, see series.hpp", true, "",
+       [](const R& r) { return r.balance_error; }},
+  };
+  return columns;
+}
+
+const char* energy_units(int dimension) { return dimension == 2 ? "J/m (per unit thickness)" : "J"; }
+
+std::string wall_force_name(const std::string& wall) { return "wall_" + wall + "_force"; }
+std::string wall_displacement_name(const std::string& wall) { return "wall_" + wall + "_displacement"; }
+
+}  // namespace
+
+// ---------------------------------------------------------------- Impl
+
+template <int D>
+struct RunFile<D>::Impl {
+  struct Frame {
+    int index = 0;
+    long long step = 0;
+    double time = 0.0;
+    std::size_t points = 0;
+    std::vector<std::string> fields;  ///< in the order of all_frame_fields()
+  };
+
+  h5::File file;
+  std::string path;
+  std::string xmf_path;
+  std::vector<std::string> wall_names;
+  std::vector<Frame> frames;  ///< sorted by index
+
+  explicit Impl(h5::File f, std::string p) : file(std::move(f)), path(std::move(p)) {
+    xmf_path = std::filesystem::path(path).replace_extension(".xmf").string();
+  }
+
+  h5::Group root() const { return file.root(); }
+
+  /// Writes /xdmf/point_ids = 0 … N−1 for the largest frame (connectivity for the XDMF Polyvertex
+  /// topology; see xdmf.hpp), then the .xmf file.
+  void rewrite_xdmf() const {
+    std::size_t largest = 0;
+    for (const Frame& frame : frames) largest = std::max(largest, frame.points);
+    const h5::Group r = root();
+    std::size_t ids = r.is_dataset("xdmf/point_ids") ? r.open_dataset("xdmf/point_ids").rows() : 0;
+    if (ids < largest) {
+      std::vector<std::int32_t> values(largest);
+      for (std::size_t p = 0; p < largest; ++p) values[p] = static_cast<std::int32_t>(p);
+      r.write("xdmf/point_ids", values, {largest})
+          .set_attribute("description", "0 ... N-1: point connectivity for the XDMF file beside this one");
+      ids = largest;
+      file.flush();  // the .xmf must never point at data that is not on disk yet
+    }
+    std::vector<XdmfFrame> light;
+    for (const Frame& frame : frames) {
+      XdmfFrame f;
+      f.group = "/frames/" + frame_name(frame.index);
+      f.time = frame.time;
+      f.points = frame.points;
+      for (const std::string& name : frame.fields) {
+        if (name == "x") continue;  // the geometry
+        const FieldInfo info = field_info<D>(name);
+        f.fields.push_back({name, info.kind, info.number});
+      }
+      light.push_back(std::move(f));
+    }
+    write_xdmf(xmf_path, std::filesystem::path(path).filename().string(), D, light, "/xdmf/point_ids", ids);
+  }
+
+  /// Rebuilds the frame list from the file (when opening an existing run).
+  void scan_frames() {
+    frames.clear();
+    const h5::Group group = root().open_group("frames");
+    for (const std::string& name : group.children()) {
+      if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        continue;
+      const h5::Group g = group.open_group(name);
+      Frame frame;
+      frame.index = std::stoi(name);
+      frame.step = g.attribute_int64("step");
+      frame.time = g.attribute_double("time");
+      frame.points = g.open_dataset("x").rows();
+      for (const std::string& field : all_frame_fields())
+        if (g.exists(field)) frame.fields.push_back(field);
+      frames.push_back(std::move(frame));
+    }
+    std::sort(frames.begin(), frames.end(), [](const Frame& a, const Frame& b) { return a.index < b.index; });
+  }
+};
+
+template <int D>
+RunFile<D>::RunFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+template <int D>
+RunFile<D>::RunFile(RunFile&&) noexcept = default;
+template <int D>
+RunFile<D>& RunFile<D>::operator=(RunFile&&) noexcept = default;
+template <int D>
+RunFile<D>::~RunFile() = default;
+
+template <int D>
+const std::string& RunFile<D>::path() const {
+  return impl_->path;
+}
+
+template <int D>
+RunFile<D> RunFile<D>::create(const std::string& path, const RunMeta& meta, bool overwrite) {
+  auto impl = std::make_unique<Impl>(h5::File::create(path, overwrite), path);
+  impl->wall_names = meta.wall_names;
+  const h5::Group root = impl->root();
+
+  const h5::Group m = root.require_group("meta");
+  m.set_attribute("program_version", FRAGMPM_VERSION);
+  m.set_attribute("git_hash", FRAGMPM_GIT_HASH);
+  m.set_attribute("scene_path", meta.scene_path);
+  m.set_attribute("scene_text", meta.scene_text);
+  m.set_attribute("unit_system", "SI; 2D quantities per unit thickness");
+  m.set_attribute("dimension", static_cast<std::int64_t>(D));
+  m.set_attribute("modules", module_lines(meta.modules));
+  std::string walls;
+  for (const std::string& w : meta.wall_names) walls += w + "\n";
+  m.set_attribute("wall_names", walls);
+
+  root.require_group("frames");
+  const h5::Group series = root.require_group("series");
+  for (const ScalarColumn<D>& c : scalar_columns<D>()) {
+    const h5::Dataset ds = series.create_extendible<double>(c.name, {});
+    ds.set_attribute("units", c.energy ? energy_units(D) : c.units);
+    ds.set_attribute("description", c.description);
+  }
+  const h5::Dataset step = series.create_extendible<std::int64_t>("step", {});
+  step.set_attribute("units", "1");
+  step.set_attribute("description", "step number of the row");
+  const h5::Dataset momentum = series.create_extendible<double>("momentum", {std::size_t{D}});
+  momentum.set_attribute("units", D == 2 ? "kg/s (momentum per unit thickness, kg m/s per m)" : "kg m/s");
+  momentum.set_attribute("description", "total momentum, steps x D");
+  for (const std::string& w : meta.wall_names) {
+    const h5::Dataset force = series.create_extendible<double>(wall_force_name(w), {std::size_t{D}});
+    force.set_attribute("units", D == 2 ? "N/m (per unit thickness)" : "N");
+    force.set_attribute("description", "reaction exerted by the material on the wall, steps x D");
+    const h5::Dataset disp = series.create_extendible<double>(wall_displacement_name(w), {std::size_t{D}});
+    disp.set_attribute("units", "m");
+    disp.set_attribute("description", "wall displacement since t = 0, steps x D");
+  }
+  impl->file.flush();
+  impl->rewrite_xdmf();
+  return RunFile(std::move(impl));
+}
+
+template <int D>
+RunFile<D> RunFile<D>::open_existing(const std::string& path) {
+  auto impl = std::make_unique<Impl>(h5::File::open(path, true), path);
+  const h5::Group root = impl->root();
+  for (const char* group : {"meta", "frames", "series"})
+    if (!root.is_group(group))
+      throw RunFileError(path + ": /" + group + ": missing; not a FragMPM run file");
+  const h5::Group meta = root.open_group("meta");
+  const std::int64_t dimension = meta.attribute_int64("dimension");
+  if (dimension != D)
+    throw RunFileError(meta.describe("the run is " + std::to_string(dimension) + "D; expected " +
+                                     std::to_string(D) + "D"));
+  impl->wall_names = split_lines(meta.attribute_string("wall_names"));
+  const h5::Group series = root.open_group("series");
+  for (const std::string& w : impl->wall_names)
+    for (const std::string& name : {wall_force_name(w), wall_displacement_name(w)})
+      if (!series.is_dataset(name)) throw RunFileError(series.describe("missing dataset '" + name + "'"));
+  impl->scan_frames();
+  impl->rewrite_xdmf();
+  return RunFile(std::move(impl));
+}
+
+template <int D>
+RunMeta RunFile<D>::meta() const {
+  const h5::Group m = impl_->root().open_group("meta");
+  RunMeta meta;
+  meta.scene_path = m.attribute_string("scene_path");
+  meta.scene_text = m.attribute_string("scene_text");
+  meta.modules = parse_modules(m);
+  meta.wall_names = split_lines(m.attribute_string("wall_names"));
+  return meta;
+}
+
+template <int D>
+int RunFile<D>::write_frame(long long step, double time, const Particles<D>& particles,
+                            const std::vector<std::string>& fields) {
+  const auto& known = all_frame_fields();
+  std::set<std::string> wanted(fields.begin(), fields.end());
+  for (const std::string& f : wanted) {
+    if (std::find(known.begin(), known.end(), f) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw RunFileError(impl_->path + ": unknown frame field '" + f + "' (expected one of " + list + ")");
+    }
+  }
+  const std::size_t n = particles.size();
+  const int index = impl_->frames.empty() ? 0 : impl_->frames.back().index + 1;
+  const std::string name = frame_name(index);
+  const h5::Group frames = impl_->root().open_group("frames");
+  if (frames.exists(name)) frames.remove(name);
+  const h5::Group g = frames.require_group(name);
+  g.set_attribute("time", time);
+  g.set_attribute("step", static_cast<std::int64_t>(step));
+
+  typename Impl::Frame frame{index, step, time, n, {}};
+  for (const std::string& field : known) {
+    // x is the geometry of every frame; temperature exists only when the thermal module runs.
+    if (field != "x" && !wanted.empty() && !wanted.count(field)) continue;
+    if (field == "temperature" && particles.temperature.empty()) continue;
+    const std::size_t size = field_size(particles, field);
+    if (size != n)
+      throw RunFileError(g.describe("particle array for '" + field + "' has " + std::to_string(size) +
+                                    " entries, expected " + std::to_string(n)));
+    const h5::Dataset ds = write_field(g, particles, field);
+    const FieldInfo info = field_info<D>(field);
+    ds.set_attribute("units", info.units);
+    ds.set_attribute("description", info.description);
+    frame.fields.push_back(field);
+  }
+  impl_->frames.push_back(std::move(frame));
+  impl_->file.flush();
+  impl_->rewrite_xdmf();
+  return index;
+}
+
+template <int D>
+void RunFile<D>::append_series(const std::vector<SeriesRow<D>>& rows) {
+  if (rows.empty()) return;
+  const h5::Group series = impl_->root().open_group("series");
+  const std::size_t walls = impl_->wall_names.size();
+  for (const SeriesRow<D>& r : rows)
+    if (r.wall_force.size() != walls || r.wall_displacement.size() != walls)
+      throw RunFileError(series.describe("series row of step " + std::to_string(r.step) + " has " +
+                                         std::to_string(r.wall_force.size()) + " wall forces and " +
+                                         std::to_string(r.wall_displacement.size()) +
+                                         " displacements; the run has " + std::to_string(walls) + " walls"));
+  std::vector<double> column(rows.size());
+  for (const ScalarColumn<D>& c : scalar_columns<D>()) {
+    for (std::size_t k = 0; k < rows.size(); ++k) column[k] = c.value(rows[k]);
+    series.open_dataset(c.name).append_rows(column);
+  }
+  std::vector<std::int64_t> steps(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) steps[k] = rows[k].step;
+  series.open_dataset("step").append_rows(steps);
+  std::vector<Vec<D>> vectors(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].momentum;
+  series.open_dataset("momentum").append_rows(pack<D>(vectors));
+  for (std::size_t w = 0; w < walls; ++w) {
+    for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].wall_force[w];
+    series.open_dataset(wall_force_name(impl_->wall_names[w])).append_rows(pack<D>(vectors));
+    for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].wall_displacement[w];
+    series.open_dataset(wall_displacement_name(impl_->wall_names[w])).append_rows(pack<D>(vectors));
+  }
+  impl_->file.flush();
+}
+
+namespace {
+/// Accumulators stored as /checkpoint attributes, so a restart resumes the energy balance exactly.
+const std::vector<std::pair<const char*, double EnergyAccumulators::*>>& accumulator_fields() {
+  static const std::vector<std::pair<const char*, double EnergyAccumulators::*>> fields{
+      {"wall_work", &EnergyAccumulators::wall_work},
+      {"gravity_work", &EnergyAccumulators::gravity_work},
+      {"friction_work", &EnergyAccumulators::friction_work},
+      {"dissipated", &EnergyAccumulators::dissipated},
+      {"impact_loss", &EnergyAccumulators::impact_loss},
+      {"initial_energy", &EnergyAccumulators::initial_energy},
+  };
+  return fields;
+}
+}  // namespace
+
+template <int D>
+void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
+  const Particles<D>& p = checkpoint.particles;
+  const std::size_t n = p.size(), d = D;
+  const h5::Group g = impl_->root().require_group("checkpoint");
+  // Marked incomplete while the datasets are overwritten, so a run killed mid-write is detected.
+  g.set_attribute("complete", std::int64_t{0});
+  g.write("x", pack<D>(p.x), {n, d});
+  g.write("v", pack<D>(p.v), {n, d});
+  g.write("F", pack<D>(p.F), {n, d, d});
+  g.write("volume0", p.volume0, {n});
+  g.write("mass", p.mass, {n});
+  g.write("domain", pack<D>(p.domain), {n, d, d});
+  g.write("stress", pack<D>(p.stress), {n, d, d});
+  g.write("damage", p.damage, {n});
+  g.write("damage_history", p.damage_history, {n});
+  g.write("surface", p.surface, {n});
+  g.write("body", p.body, {n});
+  g.write("material", p.material, {n});
+  g.write("strength", p.strength, {n});
+  if (!p.temperature.empty()) g.write("temperature", p.temperature, {n});
+  else if (g.exists("temperature")) g.remove("temperature");
+  g.set_attribute("time", checkpoint.time);
+  g.set_attribute("step", static_cast<std::int64_t>(checkpoint.step));
+  for (const auto& [name, member] : accumulator_fields()) g.set_attribute(name, checkpoint.totals.*member);
+  g.set_attribute("complete", std::int64_t{1});
+  impl_->file.flush();
+}
+
+template <int D>
+std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
+  const h5::Group root = impl_->root();
+  if (!root.exists("checkpoint")) return std::nullopt;
+  const h5::Group g = root.open_group("checkpoint");
+  if (!g.has_attribute("complete") || g.attribute_int64("complete") != 1)
+    throw RunFileError(g.describe("incomplete checkpoint (the run stopped while writing it)"));
+  Checkpoint<D> c;
+  c.time = g.attribute_double("time");
+  c.step = g.attribute_int64("step");
+  for (const auto& [name, member] : accumulator_fields())
+    if (g.has_attribute(name)) c.totals.*member = g.attribute_double(name);
+  const std::size_t n = g.open_dataset("x").rows(), d = D;
+  Particles<D>& p = c.particles;
+  p.resize(n, g.exists("temperature"));
+  unpack<D>(read_shaped<double>(g, "x", {n, d}), p.x);
+  unpack<D>(read_shaped<double>(g, "v", {n, d}), p.v);
+  unpack<D>(read_shaped<double>(g, "F", {n, d, d}), p.F);
+  p.volume0 = read_shaped<double>(g, "volume0", {n});
+  p.mass = read_shaped<double>(g, "mass", {n});
+  unpack<D>(read_shaped<double>(g, "domain", {n, d, d}), p.domain);
+  unpack<D>(read_shaped<double>(g, "stress", {n, d, d}), p.stress);
+  p.damage = read_shaped<double>(g, "damage", {n});
+  p.damage_history = read_shaped<double>(g, "damage_history", {n});
+  p.surface = read_shaped<std::uint8_t>(g, "surface", {n});
+  p.body = read_shaped<std::int32_t>(g, "body", {n});
+  p.material = read_shaped<std::int32_t>(g, "material", {n});
+  p.strength = read_shaped<double>(g, "strength", {n});
+  if (!p.temperature.empty()) p.temperature = read_shaped<double>(g, "temperature", {n});
+  return c;
+}
+
+template <int D>
+void RunFile<D>::truncate_after(long long step) {
+  const h5::Group root = impl_->root();
+  const h5::Group frames = root.open_group("frames");
+  auto& list = impl_->frames;
+  for (const auto& f : list)
+    if (f.step > step) frames.remove(frame_name(f.index));
+  list.erase(std::remove_if(list.begin(), list.end(), [&](const auto& f) { return f.step > step; }),
+             list.end());
+
+  // Rows are in step order: keep the leading rows with step ≤ `step`.
+  const h5::Group series = root.open_group("series");
+  const std::vector<std::int64_t> steps = series.read<std::int64_t>("step").values;
+  const std::size_t keep = static_cast<std::size_t>(
+      std::find_if(steps.begin(), steps.end(), [&](std::int64_t s) { return s > step; }) - steps.begin());
+  for (const std::string& name : series.children()) series.open_dataset(name).set_rows(keep);
+  impl_->file.flush();
+  impl_->rewrite_xdmf();
+}
+
+template <int D>
+void RunFile<D>::write_failure(const std::string& diagnostic) {
+  impl_->root().open_group("meta").set_attribute("failure", diagnostic);
+  impl_->file.flush();
+}
+
+template <int D>
+void RunFile<D>::flush() {
+  impl_->file.flush();
+}
+
+template <int D>
+int RunFile<D>::frame_count() const {
+  return static_cast<int>(impl_->frames.size());
+}
+
+template <int D>
+Particles<D> RunFile<D>::read_frame(int index, double* time, long long* step) const {
+  const h5::Group frames = impl_->root().open_group("frames");
+  const std::string name = frame_name(index);
+  if (index < 0 || !frames.is_group(name))
+    throw RunFileError(impl_->path + ": /frames/" + name + ": no such frame (the file has " +
+                       std::to_string(impl_->frames.size()) + " frames)");
+  const h5::Group g = frames.open_group(name);
+  if (time) *time = g.attribute_double("time");
+  if (step) *step = g.attribute_int64("step");
+  const std::size_t n = g.open_dataset("x").rows(), d = D;
+  Particles<D> p;
+  p.resize(n, g.exists("temperature"));
+  // Fields not stored in the frame keep the defaults of Particles::resize.
+  unpack<D>(read_shaped<double>(g, "x", {n, d}), p.x);
+  if (g.exists("v")) unpack<D>(read_shaped<double>(g, "v", {n, d}), p.v);
+  if (g.exists("F")) unpack<D>(read_shaped<double>(g, "F", {n, d, d}), p.F);
+  if (g.exists("volume0")) p.volume0 = read_shaped<double>(g, "volume0", {n});
+  if (g.exists("mass")) p.mass = read_shaped<double>(g, "mass", {n});
+  if (g.exists("r1")) unpack_column<D>(read_shaped<double>(g, "r1", {n, d}), p.domain, 0);
+  if (g.exists("r2")) unpack_column<D>(read_shaped<double>(g, "r2", {n, d}), p.domain, 1);
+  if (g.exists("stress")) unpack<D>(read_shaped<double>(g, "stress", {n, d, d}), p.stress);
+  if (g.exists("damage")) p.damage = read_shaped<double>(g, "damage", {n});
+  if (g.exists("surface")) p.surface = read_shaped<std::uint8_t>(g, "surface", {n});
+  if (g.exists("body")) p.body = read_shaped<std::int32_t>(g, "body", {n});
+  if (g.exists("material")) p.material = read_shaped<std::int32_t>(g, "material", {n});
+  if (g.exists("temperature")) p.temperature = read_shaped<double>(g, "temperature", {n});
+  return p;
+}
+
+std::vector<double> read_series(const std::string& path, const std::string& name) {
+  const h5::File file = h5::File::open(path, false);
+  const h5::Group root = file.root();
+  if (!root.is_dataset("series/" + name))
+    throw RunFileError(path + ": /series/" + name + ": no such series");
+  return root.read<double>("series/" + name).values;
+}
+
+template class RunFile<2>;
+template class RunFile<3>;
+
+}  // namespace fragmpm::mpm

@@ -1,0 +1,63 @@
+#pragma once
+// `fragmpm verify`: verification cases at successive resolutions against closed-form or published
+// answers (DESIGN §7), and the stability scenes (`--stability`).
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace fragmpm::pipeline {
+
+/// One row of DIR/CASE.csv: `case, variant, level, cell_size_m, particles, dt_s, steps, wall_s,
+/// metric, value, reference, error`. `error` is |value − reference| / |reference|, or an absolute
+/// error in the metric's unit when the reference is zero (the metric name says so).
+struct VerifyRow {
+  std::string case_name;
+  std::string variant;
+  int level = 0;
+  double cell_size = 0.0;  ///< [m]
+  long long particles = 0;
+  double dt = 0.0;         ///< smallest step used [s]
+  long long steps = 0;
+  double wall_seconds = 0.0;
+  std::string metric;
+  double value = 0.0;
+  double reference = 0.0;
+  double error = 0.0;
+};
+
+struct VerifyOptions {
+  bool quick = false;  ///< fewer, coarser levels (CI)
+  int threads = 0;
+};
+
+struct VerifyCase {
+  std::string name;
+  std::string description;
+  std::function<std::vector<VerifyRow>(const VerifyOptions&)> run;
+};
+
+/// Every verification case, in the order `fragmpm verify` runs them without arguments.
+const std::vector<VerifyCase>& verify_cases();
+
+/// V1: axial vibration of an elastic bar (BENCHMARKS.md), CPDI and linear shape functions.
+std::vector<VerifyRow> verify_bar(const VerifyOptions& options);
+
+/// Observed order of convergence log(e_a/e_b)/log(h_a/h_b) between consecutive levels of one
+/// variant and metric; NaN where undefined.
+double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
+
+/// Writes DIR/CASE.csv (creating DIR) and prints the table with orders to stdout.
+void report_case(const std::string& directory, const std::string& case_name,
+                 const std::vector<VerifyRow>& rows);
+
+struct StabilityResult {
+  std::string scene;
+  bool passed = false;
+  std::vector<std::string> checks;  ///< "invariant: value vs limit — ok|FAIL"
+  double wall_seconds = 0.0;
+};
+
+/// Runs every stability scene; each checks its invariants and never crashes or hangs.
+std::vector<StabilityResult> run_stability(const VerifyOptions& options);
+
+}  // namespace fragmpm::pipeline

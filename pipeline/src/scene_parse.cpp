@@ -1,0 +1,374 @@
+// Scene file → mpm::Problem<2> (DESIGN §3; format in scenes/README.md). Reads every section with
+// strict keys and units, then samples the bodies and runs the cross-checks of scene_validate.cpp.
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "fragmpm/mpm/run_file.hpp"
+#include "fragmpm/pipeline/scene.hpp"
+#include "fragmpm/pipeline/scene_shapes.hpp"
+#include "scene_toml.hpp"
+#include "scene_validate.hpp"
+
+namespace fragmpm::pipeline {
+namespace {
+
+using namespace scene_detail;
+using QK = QuantityKind;
+
+constexpr int kMaxParticlesPerCell = 16;
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "\"" : ", \"") + n + "\"";
+  return out;
+}
+
+/// Remembers names per kind of entry so that duplicates are reported with the first definition.
+class NameRegistry {
+ public:
+  explicit NameRegistry(std::string what) : what_(std::move(what)) {}
+  void add(const Section& s, const std::string& name) {
+    const auto [it, inserted] = lines_.emplace(name, s.line_of("name"));
+    if (!inserted)
+      s.fail("name", "expected a " + what_ + " name not used before, got \"" + name + "\" (already defined at line " +
+                         std::to_string(it->second) + ")");
+    order_.push_back(name);
+  }
+  const std::vector<std::string>& names() const { return order_; }
+  int index(const std::string& name) const {
+    const auto it = std::find(order_.begin(), order_.end(), name);
+    return it == order_.end() ? -1 : static_cast<int>(it - order_.begin());
+  }
+
+ private:
+  std::string what_;
+  std::map<std::string, int> lines_;
+  std::vector<std::string> order_;
+};
+
+int read_grid(const Section& g, mpm::GridSpec<2>& grid) {
+  g.allow_only({"cell_size", "min", "max", "shape_function", "particles_per_cell"});
+  grid.cell_size = g.quantity("cell_size", QK::length);
+  if (!(grid.cell_size > 0.0)) g.expected("cell_size", "a positive length");
+  grid.min = g.vector("min", QK::length);
+  grid.max = g.vector("max", QK::length);
+  for (int d = 0; d < 2; ++d)
+    if (!(grid.max[d] > grid.min[d]))
+      g.fail("max", "expected max > min in x and y, got max = [" + si(grid.max.x(), "m") + ", " + si(grid.max.y(), "m") +
+                        "] and min = [" + si(grid.min.x(), "m") + ", " + si(grid.min.y(), "m") + "]");
+  const Vec2 extent = grid.max - grid.min;
+  if (grid.cell_size > extent.minCoeff())
+    g.fail("cell_size", "expected a cell size no larger than the domain (" + si(extent.x(), "m") + " x " +
+                            si(extent.y(), "m") + "), got " + si(grid.cell_size, "m"));
+  const std::string sf = g.optional_string("shape_function").value_or("cpdi");
+  if (sf == "cpdi") grid.shape_function = mpm::ShapeFunctionKind::cpdi;
+  else if (sf == "linear") grid.shape_function = mpm::ShapeFunctionKind::linear;
+  else if (sf == "ugimp") grid.shape_function = mpm::ShapeFunctionKind::ugimp;
+  else g.expected("shape_function", "one of \"cpdi\", \"linear\", \"ugimp\"");
+  const long long n = g.optional_integer("particles_per_cell").value_or(2);
+  if (n < 1 || n > kMaxParticlesPerCell)
+    g.expected("particles_per_cell", "an integer from 1 to " + std::to_string(kMaxParticlesPerCell) + " (per direction)");
+  return static_cast<int>(n);
+}
+
+void read_time(const Section& t, mpm::TimeSpec& time) {
+  t.allow_only({"cfl", "dt", "pic_fraction"});
+  time.cfl = t.optional_number("cfl").value_or(0.4);
+  if (!(time.cfl > 0.0 && time.cfl <= 1.0)) t.expected("cfl", "a Courant number 0 < cfl <= 1");
+  if (auto dt = t.optional_quantity("dt", QK::time)) {
+    if (!(*dt > 0.0)) t.expected("dt", "a positive time step");
+    time.fixed_dt = *dt;
+  }
+  time.pic_fraction = t.optional_number("pic_fraction").value_or(0.0);
+  if (!(time.pic_fraction >= 0.0 && time.pic_fraction <= 1.0))
+    t.expected("pic_fraction", "a PIC fraction 0 <= pic_fraction <= 1 (000 eq. 64)");
+}
+
+mpm::MaterialSpec read_material(const Section& m) {
+  m.allow_only({"name", "model", "E", "nu", "K", "G", "density"});
+  mpm::MaterialSpec spec;
+  spec.name = m.name("name");
+  const std::string model = m.optional_string("model").value_or("neo-hookean");
+  if (model != "neo-hookean") m.expected("model", "\"neo-hookean\" (the only material model so far)");
+  const bool young = m.has("E") || m.has("nu");
+  const bool bulk = m.has("K") || m.has("G");
+  if (young && bulk)
+    m.fail(m.has("K") ? "K" : "G", "expected either (E, nu) or (K, G), got both kinds of elastic constants");
+  if (!young && !bulk) m.fail("E", "missing required key: expected either E and nu, or K and G");
+  if (young) {
+    const double E = m.quantity("E", QK::pressure);
+    if (!(E > 0.0)) m.expected("E", "a positive Young's modulus");
+    const double nu = m.number("nu");
+    if (!(nu > -1.0 && nu < 0.5)) m.expected("nu", "a Poisson's ratio -1 < nu < 0.5");
+    spec.bulk_modulus = E / (3.0 * (1.0 - 2.0 * nu));
+    spec.shear_modulus = E / (2.0 * (1.0 + nu));
+  } else {
+    spec.bulk_modulus = m.quantity("K", QK::pressure);
+    if (!(spec.bulk_modulus > 0.0)) m.expected("K", "a positive bulk modulus");
+    spec.shear_modulus = m.quantity("G", QK::pressure);
+    if (!(spec.shear_modulus > 0.0)) m.expected("G", "a positive shear modulus");
+  }
+  spec.density = m.quantity("density", QK::density);
+  if (!(spec.density > 0.0)) m.expected("density", "a positive density");
+  return spec;
+}
+
+Shape read_shape(const Section& b) {
+  Shape s;
+  const std::string kind = b.string("shape");
+  const std::vector<std::string_view> common = {"name", "material", "shape", "velocity", "angular_velocity"};
+  auto allow = [&](std::initializer_list<std::string_view> extra) {
+    std::vector<std::string_view> keys = common;
+    keys.insert(keys.end(), extra);
+    b.allow_only(keys);
+  };
+  if (kind == "disk") {
+    allow({"center", "radius"});
+    s.kind = ShapeKind::disk;
+    s.center = b.vector("center", QK::length);
+    s.radius = b.quantity("radius", QK::length);
+    if (!(s.radius > 0.0)) b.expected("radius", "a positive length");
+  } else if (kind == "box") {
+    allow({"min", "max"});
+    s.kind = ShapeKind::box;
+    s.min = b.vector("min", QK::length);
+    s.max = b.vector("max", QK::length);
+    if (!(s.max.x() > s.min.x() && s.max.y() > s.min.y()))
+      b.fail("max", "expected max > min in x and y, got max = [" + si(s.max.x(), "m") + ", " + si(s.max.y(), "m") +
+                        "] and min = [" + si(s.min.x(), "m") + ", " + si(s.min.y(), "m") + "]");
+  } else if (kind == "polygon") {
+    allow({"vertices"});
+    s.kind = ShapeKind::polygon;
+    s.vertices = b.point_list("vertices", QK::length);
+    if (s.vertices.size() < 3)
+      b.fail("vertices", "expected at least 3 vertices, got " + std::to_string(s.vertices.size()));
+    const auto [e1, e2] = polygon_self_intersection(s.vertices);
+    if (e1 >= 0) {
+      const auto n = s.vertices.size();
+      auto edge = [&](int e) {
+        return std::to_string(e) + "-" + std::to_string((static_cast<std::size_t>(e) + 1) % n);
+      };
+      b.fail("vertices", "expected a simple polygon, got edges between vertices " + edge(e1) + " and " + edge(e2) +
+                             (e1 == e2 ? " (a repeated vertex)" : " that meet or fold back"));
+    }
+    if (!(polygon_area(s.vertices) > 0.0)) b.fail("vertices", "expected a polygon with positive area, got zero area");
+  } else {
+    b.expected("shape", "one of \"disk\", \"box\", \"polygon\"");
+  }
+  return s;
+}
+
+BodyEntry read_body(const Section& b, const NameRegistry& materials) {
+  BodyEntry body{b.name("name"), {}, b};
+  const std::string material = b.string("material");
+  const int m = materials.index(material);
+  if (m < 0) b.expected("material", "the name of a material defined in [[materials]] (" + quoted_list(materials.names()) + ")");
+  body.sample.material = m;
+  body.sample.shape = read_shape(b);
+  body.sample.velocity = b.optional_vector("velocity", QK::velocity).value_or(Vec2::Zero());
+  body.sample.angular_velocity = b.optional_quantity("angular_velocity", QK::angular_velocity).value_or(0.0);
+  return body;
+}
+
+mpm::VelocityHistory<2> read_history(const Section& h) {
+  mpm::VelocityHistory<2> v;
+  const std::string type = h.string("type");
+  if (type == "constant") {
+    h.allow_only({"type", "value"});
+    v.kind = mpm::HistoryKind::constant;
+    v.from = h.vector("value", QK::velocity);
+  } else if (type == "ramp") {
+    h.allow_only({"type", "from", "to", "t_start", "t_end"});
+    v.kind = mpm::HistoryKind::ramp;
+    v.from = h.vector("from", QK::velocity);
+    v.to = h.vector("to", QK::velocity);
+    v.t_start = h.optional_quantity("t_start", QK::time).value_or(0.0);
+    if (!(v.t_start >= 0.0)) h.expected("t_start", "a time t_start >= 0");
+    v.t_end = h.quantity("t_end", QK::time);
+    if (!(v.t_end > v.t_start)) h.expected("t_end", "a time t_end > t_start = " + si(v.t_start, "s"));
+  } else if (type == "sinusoid") {
+    h.allow_only({"type", "offset", "amplitude", "frequency", "phase"});
+    v.kind = mpm::HistoryKind::sinusoid;
+    v.from = h.optional_vector("offset", QK::velocity).value_or(Vec2::Zero());
+    v.amplitude = h.vector("amplitude", QK::velocity);
+    v.frequency = h.quantity("frequency", QK::frequency);
+    if (!(v.frequency > 0.0)) h.expected("frequency", "a positive frequency");
+    v.phase = h.optional_quantity("phase", QK::angle).value_or(0.0);
+  } else {
+    h.expected("type", "one of \"constant\", \"ramp\", \"sinusoid\"");
+  }
+  return v;
+}
+
+mpm::WallSpec<2> read_wall(const Section& w) {
+  w.allow_only({"name", "point", "normal", "kind", "friction", "velocity"});
+  mpm::WallSpec<2> wall;
+  wall.name = w.name("name");
+  wall.point = w.vector("point", QK::length);
+  const Vec2 n = w.vector("normal", std::nullopt);
+  if (!(n.norm() > 0.0)) w.expected("normal", "a non-zero normal vector pointing into the material side");
+  wall.normal = n / n.norm();
+  const std::string kind = w.optional_string("kind").value_or("contact");
+  if (kind == "contact") wall.kind = mpm::WallKind::contact;
+  else if (kind == "roller") wall.kind = mpm::WallKind::roller;
+  else if (kind == "fixed") wall.kind = mpm::WallKind::fixed;
+  else w.expected("kind", "one of \"contact\", \"roller\", \"fixed\"");
+  if (auto mu = w.optional_number("friction")) {
+    if (wall.kind != mpm::WallKind::contact)
+      w.fail("friction", "expected no friction for kind = \"" + kind + "\" (friction applies to contact walls only)");
+    if (!(*mu >= 0.0)) w.expected("friction", "a Coulomb friction coefficient >= 0");
+    wall.friction = *mu;
+  }
+  if (auto h = w.optional_table("velocity")) wall.velocity = read_history(*h);
+  return wall;
+}
+
+bool never_moves(const mpm::VelocityHistory<2>& v) {
+  switch (v.kind) {
+    case mpm::HistoryKind::constant: return v.from.isZero(0.0);
+    case mpm::HistoryKind::ramp: return v.from.isZero(0.0) && v.to.isZero(0.0);
+    case mpm::HistoryKind::sinusoid: return v.from.isZero(0.0) && v.amplitude.isZero(0.0);
+  }
+  return false;
+}
+
+void read_stop(const Section& s, const NameRegistry& walls, const std::vector<mpm::WallSpec<2>>& wall_specs,
+               mpm::StopSpec& stop) {
+  s.allow_only({"end_time", "max_steps", "platen_displacement", "platen"});
+  if (!s.has("end_time") && !s.has("max_steps") && !s.has("platen_displacement"))
+    s.fail_table("no stop condition: expected at least one of end_time, max_steps, platen_displacement");
+  if (auto t = s.optional_quantity("end_time", QK::time)) {
+    if (!(*t > 0.0)) s.expected("end_time", "a positive time");
+    stop.end_time = *t;
+  }
+  if (auto n = s.optional_integer("max_steps")) {
+    if (*n < 1) s.expected("max_steps", "a positive number of steps");
+    stop.max_steps = *n;
+  }
+  if (auto d = s.optional_quantity("platen_displacement", QK::length)) {
+    if (!(*d > 0.0)) s.expected("platen_displacement", "a positive length");
+    if (!s.has("platen")) s.fail("platen", "missing required key: platen_displacement needs platen = \"<wall name>\"");
+    stop.platen_displacement = *d;
+  }
+  if (s.has("platen")) {
+    if (!s.has("platen_displacement"))
+      s.fail("platen", "expected platen only together with platen_displacement, got platen without it");
+    const std::string name = s.string("platen");
+    stop.platen = walls.index(name);
+    if (stop.platen < 0)
+      s.expected("platen", walls.names().empty()
+                               ? std::string("the name of a wall, but no [[walls]] are defined")
+                               : "the name of a wall defined in [[walls]] (" + quoted_list(walls.names()) + ")");
+    if (!s.has("end_time") && !s.has("max_steps") && never_moves(wall_specs[static_cast<std::size_t>(stop.platen)].velocity))
+      s.fail("platen", "expected a platen that moves (it is the only stop condition), got wall '" + name +
+                           "' whose velocity is zero at all times");
+  }
+}
+
+void read_output(const std::optional<Section>& o, const mpm::StopSpec& stop, mpm::OutputSpec& out) {
+  out.interval = std::isfinite(stop.end_time) ? stop.end_time / 20.0 : 0.0;
+  if (!o) return;
+  o->allow_only({"interval", "fields"});
+  if (auto iv = o->optional_quantity("interval", QK::time)) {
+    if (!(*iv >= 0.0)) o->expected("interval", "a time interval >= 0 (0 = first and last frame only)");
+    out.interval = *iv;
+  }
+  if (!o->has("fields")) return;
+  const std::vector<std::string> fields = o->string_list("fields");
+  const std::vector<std::string>& known = mpm::all_frame_fields();
+  if (fields.empty()) o->expected("fields", "at least one frame field (leave the key out for all)");
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const std::string ek = "fields[" + std::to_string(i) + "]";
+    const int line = static_cast<int>(o->find("fields")->as_array()->get(i)->source().begin.line);
+    if (std::find(known.begin(), known.end(), fields[i]) == known.end())
+      scene_detail::fail(o->file(), line, o->key(ek),
+                         "expected one of " + quoted_list(known) + ", got \"" + fields[i] + "\"");
+    if (std::find(fields.begin(), fields.begin() + static_cast<std::ptrdiff_t>(i), fields[i]) !=
+        fields.begin() + static_cast<std::ptrdiff_t>(i))
+      scene_detail::fail(o->file(), line, o->key(ek), "expected each field once, got \"" + fields[i] + "\" twice");
+  }
+  out.fields = fields;
+}
+
+}  // namespace
+
+mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(std::string_view(text), std::string_view(path));
+  } catch (const toml::parse_error& e) {
+    throw SceneError(path, static_cast<int>(e.source().begin.line), "",
+                     "TOML syntax error (column " + std::to_string(e.source().begin.column) + "): " +
+                         std::string(e.description()));
+  }
+  const Section top(root, "", path);
+  top.allow_only({"grid", "time", "physics", "materials", "bodies", "walls", "stop", "output"});
+
+  mpm::Problem<2> problem;
+  problem.scene_path = path;
+  problem.scene_text = text;
+
+  const int per_cell = read_grid(top.table("grid"), problem.grid);
+  const std::optional<Section> time = top.optional_table("time");
+  if (time) read_time(*time, problem.time);
+  if (auto physics = top.optional_table("physics")) {
+    physics->allow_only({"gravity"});
+    problem.gravity = physics->optional_vector("gravity", QK::acceleration).value_or(Vec2::Zero());
+  }
+
+  NameRegistry material_names("material");
+  for (const Section& m : top.array_of_tables("materials", true)) {
+    problem.materials.push_back(read_material(m));
+    material_names.add(m, problem.materials.back().name);
+  }
+
+  NameRegistry body_names("body");
+  std::vector<BodyEntry> bodies;
+  for (const Section& b : top.array_of_tables("bodies", true)) {
+    bodies.push_back(read_body(b, material_names));
+    body_names.add(b, bodies.back().name);
+  }
+  problem.body_names = body_names.names();
+
+  NameRegistry wall_names("wall");
+  for (const Section& w : top.array_of_tables("walls", false)) {
+    problem.walls.push_back(read_wall(w));
+    wall_names.add(w, problem.walls.back().name);
+  }
+
+  if (!top.has("stop"))
+    top.fail("stop", "missing required table [stop]: expected at least one of end_time, max_steps, platen_displacement");
+  read_stop(top.table("stop"), wall_names, problem.walls, problem.stop);
+  read_output(top.optional_table("output"), problem.stop, problem.output);
+
+  // Geometry: every body inside the domain, sampled on the sub-cell lattice, none empty.
+  for (const BodyEntry& b : bodies) check_body_in_domain(b, problem.grid);
+  std::vector<BodySample> samples;
+  for (const BodyEntry& b : bodies) samples.push_back(b.sample);
+  SampleResult sampled = sample_bodies(samples, problem.materials, problem.grid, per_cell);
+  check_sampling(bodies, sampled, problem.grid.cell_size / per_cell);
+  problem.particles = std::move(sampled.particles);
+
+  if (time) check_fixed_dt(problem, *time);
+  return problem;
+}
+
+mpm::Problem<2> load_scene(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw SceneError(path, 0, "", "cannot read scene file: it is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path, 0, "", std::string("cannot open scene file: ") + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(path, 0, "", "cannot read scene file");
+  return parse_scene(text.str(), path);
+}
+
+}  // namespace fragmpm::pipeline

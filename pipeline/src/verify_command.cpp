@@ -1,0 +1,97 @@
+// `fragmpm verify [CASE…] [--quick] [--stability] [-o DIR]`.
+#include <omp.h>
+
+#include <cstdio>
+#include <memory>
+
+#include "fragmpm/pipeline/commands.hpp"
+#include "fragmpm/pipeline/scene.hpp"
+#include "fragmpm/pipeline/verify.hpp"
+
+namespace fragmpm::pipeline {
+
+const std::vector<VerifyCase>& verify_cases() {
+  static const std::vector<VerifyCase> cases{
+      {"bar", "V1 axial vibration of an elastic bar: centre-of-mass velocity over one period",
+       verify_bar},
+  };
+  return cases;
+}
+
+namespace {
+
+struct VerifyArguments {
+  std::vector<std::string> cases;
+  std::string output = "verify-out";
+  bool quick = false;
+  bool stability = false;
+  bool list = false;
+  int threads = 0;
+};
+
+int execute(const VerifyArguments& args) {
+  if (args.threads > 0) omp_set_num_threads(args.threads);
+  VerifyOptions options;
+  options.quick = args.quick;
+  options.threads = args.threads;
+  if (args.list) {
+    for (const auto& c : verify_cases()) std::printf("%-16s %s\n", c.name.c_str(), c.description.c_str());
+    return 0;
+  }
+  if (args.stability) {
+    const auto results = run_stability(options);
+    bool all = true;
+    for (const auto& r : results) {
+      std::printf("\n%-24s %s  (%.2f s)\n", r.scene.c_str(), r.passed ? "PASS" : "FAIL", r.wall_seconds);
+      for (const auto& check : r.checks) std::printf("    %s\n", check.c_str());
+      all = all && r.passed;
+    }
+    std::printf("\nstability: %s\n", all ? "all scenes passed" : "some scenes FAILED");
+    if (!all) return 3;
+    if (args.cases.empty()) return 0;
+  }
+  std::vector<const VerifyCase*> selected;
+  for (const auto& name : args.cases) {
+    const VerifyCase* found = nullptr;
+    for (const auto& c : verify_cases())
+      if (c.name == name) found = &c;
+    if (!found) {
+      std::fprintf(stderr, "fragmpm verify: unknown case '%s'; known cases:", name.c_str());
+      for (const auto& c : verify_cases()) std::fprintf(stderr, " %s", c.name.c_str());
+      std::fprintf(stderr, "\n");
+      return 2;
+    }
+    selected.push_back(found);
+  }
+  if (selected.empty())
+    for (const auto& c : verify_cases()) selected.push_back(&c);
+  for (const VerifyCase* c : selected) {
+    try {
+      report_case(args.output, c->name, c->run(options));
+    } catch (const SceneError& e) {
+      std::fprintf(stderr, "fragmpm verify %s: scene error: %s\n", c->name.c_str(), e.what());
+      return 2;
+    } catch (const std::runtime_error& e) {
+      std::fprintf(stderr, "fragmpm verify %s: %s\n", c->name.c_str(), e.what());
+      return 3;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_verify_command(CLI::App& app, CommandResult& result) {
+  auto args = std::make_shared<VerifyArguments>();
+  CLI::App* verify = app.add_subcommand(
+      "verify", "Run verification cases at successive resolutions (writes DIR/CASE.csv) or the stability scenes");
+  verify->add_option("cases", args->cases, "Cases to run (default: all; --list shows them)");
+  verify->add_option("-o,--output", args->output, "Directory for CSV files (default verify-out)");
+  verify->add_flag("--quick", args->quick, "Fewer, coarser levels (for CI)");
+  verify->add_flag("--stability", args->stability, "Run the stiff and extreme stability scenes");
+  verify->add_flag("--list", args->list, "List the cases");
+  verify->add_option("--threads", args->threads, "OpenMP threads");
+  verify->callback([args, &result] { result.exit_code = execute(*args); });
+}
+
+}  // namespace fragmpm::pipeline

@@ -1,0 +1,48 @@
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "fragmpm/pipeline/verify.hpp"
+
+namespace fragmpm::pipeline {
+
+double observed_order(const VerifyRow& coarse, const VerifyRow& fine) {
+  if (!(coarse.error > 0.0) || !(fine.error > 0.0) || coarse.cell_size == fine.cell_size)
+    return std::numeric_limits<double>::quiet_NaN();
+  return std::log(coarse.error / fine.error) / std::log(coarse.cell_size / fine.cell_size);
+}
+
+void report_case(const std::string& directory, const std::string& case_name,
+                 const std::vector<VerifyRow>& rows) {
+  std::filesystem::create_directories(directory);
+  const std::string path = (std::filesystem::path(directory) / (case_name + ".csv")).string();
+  std::ofstream csv(path);
+  csv << "case,variant,level,cell_size_m,particles,dt_s,steps,wall_s,metric,value,reference,error\n";
+  csv.precision(10);
+  for (const auto& r : rows)
+    csv << r.case_name << ',' << r.variant << ',' << r.level << ',' << r.cell_size << ','
+        << r.particles << ',' << r.dt << ',' << r.steps << ',' << r.wall_seconds << ',' << r.metric
+        << ',' << r.value << ',' << r.reference << ',' << r.error << '\n';
+  std::printf("\n%s\n%-8s %-5s %11s %9s %10s %7s %8s  %-28s %12s %12s %10s %6s\n", case_name.c_str(),
+              "variant", "level", "h [m]", "particles", "dt [s]", "steps", "wall [s]", "metric",
+              "value", "reference", "error", "order");
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const VerifyRow& r = rows[i];
+    double order = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t j = i; j-- > 0;)
+      if (rows[j].variant == r.variant && rows[j].metric == r.metric) {
+        order = observed_order(rows[j], r);
+        break;
+      }
+    char order_text[16] = "";
+    if (std::isfinite(order)) std::snprintf(order_text, sizeof order_text, "%6.2f", order);
+    std::printf("%-8s %-5d %11.4e %9lld %10.3e %7lld %8.2f  %-28s %12.5e %12.5e %10.3e %6s\n",
+                r.variant.c_str(), r.level, r.cell_size, r.particles, r.dt, r.steps, r.wall_seconds,
+                r.metric.c_str(), r.value, r.reference, r.error, order_text);
+  }
+  std::printf("written %s\n", path.c_str());
+}
+
+}  // namespace fragmpm::pipeline
