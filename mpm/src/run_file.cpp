@@ -5,10 +5,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <set>
 
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/mpm/xdmf.hpp"
+#include "run_file_fields.hpp"
 
 #ifndef FRAGMPM_VERSION
 #define FRAGMPM_VERSION "unknown"
@@ -28,141 +30,14 @@ const std::vector<std::string>& all_frame_fields() {
 
 namespace {
 
+using namespace run_file_detail;
+
 constexpr const char* kModuleSeparator = " \u2014 ";  // "name: on — reason"
 
 std::string frame_name(int index) {
   char buffer[16];
   std::snprintf(buffer, sizeof buffer, "%06d", index);
   return buffer;
-}
-
-/// Units (and a hint on layout) of every dataset, for users' own scripts.
-struct FieldInfo {
-  const char* units;
-  const char* description;
-  XdmfField::Kind kind;
-  XdmfField::Number number;
-};
-
-template <int D>
-FieldInfo field_info(const std::string& name) {
-  using K = XdmfField::Kind;
-  using N = XdmfField::Number;
-  const bool plane = D == 2;
-  if (name == "x") return {"m", "position, N x D", K::vector, N::float64};
-  if (name == "v") return {"m/s", "velocity, N x D", K::vector, N::float64};
-  if (name == "F") return {"1", "deformation gradient, N x D x D, F[p][i][j] = F_ij", K::tensor, N::float64};
-  if (name == "volume0")
-    return {plane ? "m^2 (per unit thickness)" : "m^3", "initial volume, N", K::scalar, N::float64};
-  if (name == "mass") return {plane ? "kg/m (per unit thickness)" : "kg", "mass, N", K::scalar, N::float64};
-  if (name == "r1") return {"m", "CPDI domain edge vector r1, N x D", K::vector, N::float64};
-  if (name == "r2") return {"m", "CPDI domain edge vector r2, N x D", K::vector, N::float64};
-  if (name == "stress")
-    return {"Pa", "Cauchy stress, N x D x D, stress[p][i][j] = sigma_ij", K::tensor, N::float64};
-  if (name == "damage") return {"1", "damage d in [0, 1], N", K::scalar, N::float64};
-  if (name == "surface") return {"1", "1 = on a body boundary, N", K::scalar, N::uint8};
-  if (name == "body") return {"1", "body id, N", K::scalar, N::int32};
-  if (name == "material") return {"1", "index into the scene's material list, N", K::scalar, N::int32};
-  return {"K", "temperature, N", K::scalar, N::float64};  // "temperature"
-}
-
-// ---- packing between Eigen arrays of structures and row-major HDF5 buffers
-
-template <int D>
-std::vector<double> pack(const std::vector<Vec<D>>& values) {
-  std::vector<double> out(values.size() * D);
-  for (std::size_t p = 0; p < values.size(); ++p)
-    for (int i = 0; i < D; ++i) out[p * D + i] = values[p](i);
-  return out;
-}
-
-/// N x D x D row-major: out[p][i][j] = m_p(i, j) (Eigen stores column-major, so copy explicitly).
-template <int D>
-std::vector<double> pack(const std::vector<Mat<D>>& values) {
-  std::vector<double> out(values.size() * D * D);
-  for (std::size_t p = 0; p < values.size(); ++p)
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) out[(p * D + i) * D + j] = values[p](i, j);
-  return out;
-}
-
-template <int D>
-std::vector<double> pack_column(const std::vector<Mat<D>>& values, int column) {
-  std::vector<double> out(values.size() * D);
-  for (std::size_t p = 0; p < values.size(); ++p)
-    for (int i = 0; i < D; ++i) out[p * D + i] = values[p](i, column);
-  return out;
-}
-
-/// Reads a dataset and checks its shape, so a foreign or damaged file gives a clear message.
-template <h5::Element T>
-std::vector<T> read_shaped(const h5::Group& group, const std::string& name, const h5::Dims& expected) {
-  h5::Array<T> array = group.read<T>(name);
-  if (array.dims != expected) {
-    auto text = [](const h5::Dims& dims) {
-      std::string s;
-      for (std::size_t k = 0; k < dims.size(); ++k) s += (k ? "x" : "") + std::to_string(dims[k]);
-      return "(" + s + ")";
-    };
-    throw RunFileError(group.describe("dataset '" + name + "' has shape " + text(array.dims) +
-                                      ", expected " + text(expected)));
-  }
-  return std::move(array.values);
-}
-
-template <int D>
-void unpack(const std::vector<double>& in, std::vector<Vec<D>>& out) {
-  for (std::size_t p = 0; p < out.size(); ++p)
-    for (int i = 0; i < D; ++i) out[p](i) = in[p * D + i];
-}
-
-template <int D>
-void unpack(const std::vector<double>& in, std::vector<Mat<D>>& out) {
-  for (std::size_t p = 0; p < out.size(); ++p)
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) out[p](i, j) = in[(p * D + i) * D + j];
-}
-
-template <int D>
-void unpack_column(const std::vector<double>& in, std::vector<Mat<D>>& out, int column) {
-  for (std::size_t p = 0; p < out.size(); ++p)
-    for (int i = 0; i < D; ++i) out[p](i, column) = in[p * D + i];
-}
-
-/// Number of entries of the particle array behind a frame field (to catch inconsistent input).
-template <int D>
-std::size_t field_size(const Particles<D>& p, const std::string& field) {
-  if (field == "x") return p.x.size();
-  if (field == "v") return p.v.size();
-  if (field == "F") return p.F.size();
-  if (field == "volume0") return p.volume0.size();
-  if (field == "mass") return p.mass.size();
-  if (field == "r1" || field == "r2") return p.domain.size();
-  if (field == "stress") return p.stress.size();
-  if (field == "damage") return p.damage.size();
-  if (field == "surface") return p.surface.size();
-  if (field == "body") return p.body.size();
-  if (field == "material") return p.material.size();
-  return p.temperature.size();
-}
-
-/// Writes one frame field; r1 and r2 are columns 0 and 1 of the CPDI domain matrix.
-template <int D>
-h5::Dataset write_field(const h5::Group& g, const Particles<D>& p, const std::string& field) {
-  const std::size_t n = p.size(), d = D;
-  if (field == "x") return g.write(field, pack<D>(p.x), {n, d});
-  if (field == "v") return g.write(field, pack<D>(p.v), {n, d});
-  if (field == "F") return g.write(field, pack<D>(p.F), {n, d, d});
-  if (field == "volume0") return g.write(field, p.volume0, {n});
-  if (field == "mass") return g.write(field, p.mass, {n});
-  if (field == "r1") return g.write(field, pack_column<D>(p.domain, 0), {n, d});
-  if (field == "r2") return g.write(field, pack_column<D>(p.domain, 1), {n, d});
-  if (field == "stress") return g.write(field, pack<D>(p.stress), {n, d, d});
-  if (field == "damage") return g.write(field, p.damage, {n});
-  if (field == "surface") return g.write(field, p.surface, {n});
-  if (field == "body") return g.write(field, p.body, {n});
-  if (field == "material") return g.write(field, p.material, {n});
-  return g.write(field, p.temperature, {n});
 }
 
 // ---- /meta
@@ -239,8 +114,6 @@ const std::vector<ScalarColumn<D>>& scalar_columns() {
        [](const R& r) { return r.totals.wall_work; }},
       {"gravity_work", "work of gravity (cumulative)", true, "",
        [](const R& r) { return r.totals.gravity_work; }},
-      {"impact_loss", "kinetic energy lost in inelastic grid impacts (cumulative)", true, "",
-       [](const R& r) { return r.totals.impact_loss; }},
       {"balance_error", "energy balance error, see series.hpp", true, "",
        [](const R& r) { return r.balance_error; }},
   };
@@ -271,12 +144,32 @@ struct RunFile<D>::Impl {
   std::string xmf_path;
   std::vector<std::string> wall_names;
   std::vector<Frame> frames;  ///< sorted by index
+  /// /series datasets, kept open: reopening them for every append costs ~10x the append itself,
+  /// because closing a chunked dataset writes its chunk cache back.
+  std::map<std::string, h5::Dataset> series;
 
   explicit Impl(h5::File f, std::string p) : file(std::move(f)), path(std::move(p)) {
     xmf_path = std::filesystem::path(path).replace_extension(".xmf").string();
   }
 
   h5::Group root() const { return file.root(); }
+
+  /// Opens every /series dataset and checks that the ones this run appends to exist.
+  void open_series() {
+    const h5::Group group = root().open_group("series");
+    series.clear();
+    for (const std::string& name : group.children()) series.emplace(name, group.open_dataset(name));
+    std::vector<std::string> required{"step", "momentum"};
+    for (const ScalarColumn<D>& c : scalar_columns<D>()) required.push_back(c.name);
+    for (const std::string& w : wall_names) {
+      required.push_back(wall_force_name(w));
+      required.push_back(wall_displacement_name(w));
+    }
+    for (const std::string& name : required)
+      if (!series.count(name)) throw RunFileError(group.describe("missing dataset '" + name + "'"));
+  }
+
+  const h5::Dataset& series_dataset(const std::string& name) const { return series.at(name); }
 
   /// Writes /xdmf/point_ids = 0 … N−1 for the largest frame (connectivity for the XDMF Polyvertex
   /// topology; see xdmf.hpp), then the .xmf file.
@@ -346,6 +239,15 @@ const std::string& RunFile<D>::path() const {
 
 template <int D>
 RunFile<D> RunFile<D>::create(const std::string& path, const RunMeta& meta, bool overwrite) {
+  // Wall names become dataset names (wall_<name>_force) and lines of /meta wall_names.
+  for (std::size_t w = 0; w < meta.wall_names.size(); ++w) {
+    const std::string& name = meta.wall_names[w];
+    if (name.empty() || name.find_first_of("/\n") != std::string::npos ||
+        std::find(meta.wall_names.begin(), meta.wall_names.begin() + static_cast<std::ptrdiff_t>(w), name) !=
+            meta.wall_names.begin() + static_cast<std::ptrdiff_t>(w))
+      throw RunFileError(path + ": wall name '" + name +
+                         "' must be non-empty, unique and free of '/' and line breaks");
+  }
   auto impl = std::make_unique<Impl>(h5::File::create(path, overwrite), path);
   impl->wall_names = meta.wall_names;
   const h5::Group root = impl->root();
@@ -383,6 +285,7 @@ RunFile<D> RunFile<D>::create(const std::string& path, const RunMeta& meta, bool
     disp.set_attribute("units", "m");
     disp.set_attribute("description", "wall displacement since t = 0, steps x D");
   }
+  impl->open_series();
   impl->file.flush();
   impl->rewrite_xdmf();
   return RunFile(std::move(impl));
@@ -401,10 +304,7 @@ RunFile<D> RunFile<D>::open_existing(const std::string& path) {
     throw RunFileError(meta.describe("the run is " + std::to_string(dimension) + "D; expected " +
                                      std::to_string(D) + "D"));
   impl->wall_names = split_lines(meta.attribute_string("wall_names"));
-  const h5::Group series = root.open_group("series");
-  for (const std::string& w : impl->wall_names)
-    for (const std::string& name : {wall_force_name(w), wall_displacement_name(w)})
-      if (!series.is_dataset(name)) throw RunFileError(series.describe("missing dataset '" + name + "'"));
+  impl->open_series();
   impl->scan_frames();
   impl->rewrite_xdmf();
   return RunFile(std::move(impl));
@@ -466,30 +366,29 @@ int RunFile<D>::write_frame(long long step, double time, const Particles<D>& par
 template <int D>
 void RunFile<D>::append_series(const std::vector<SeriesRow<D>>& rows) {
   if (rows.empty()) return;
-  const h5::Group series = impl_->root().open_group("series");
   const std::size_t walls = impl_->wall_names.size();
   for (const SeriesRow<D>& r : rows)
     if (r.wall_force.size() != walls || r.wall_displacement.size() != walls)
-      throw RunFileError(series.describe("series row of step " + std::to_string(r.step) + " has " +
-                                         std::to_string(r.wall_force.size()) + " wall forces and " +
-                                         std::to_string(r.wall_displacement.size()) +
-                                         " displacements; the run has " + std::to_string(walls) + " walls"));
+      throw RunFileError(impl_->path + ": /series: the row of step " + std::to_string(r.step) + " has " +
+                         std::to_string(r.wall_force.size()) + " wall forces and " +
+                         std::to_string(r.wall_displacement.size()) + " displacements; the run has " +
+                         std::to_string(walls) + " walls");
   std::vector<double> column(rows.size());
   for (const ScalarColumn<D>& c : scalar_columns<D>()) {
     for (std::size_t k = 0; k < rows.size(); ++k) column[k] = c.value(rows[k]);
-    series.open_dataset(c.name).append_rows(column);
+    impl_->series_dataset(c.name).append_rows(column);
   }
   std::vector<std::int64_t> steps(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) steps[k] = rows[k].step;
-  series.open_dataset("step").append_rows(steps);
+  impl_->series_dataset("step").append_rows(steps);
   std::vector<Vec<D>> vectors(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].momentum;
-  series.open_dataset("momentum").append_rows(pack<D>(vectors));
+  impl_->series_dataset("momentum").append_rows(pack<D>(vectors));
   for (std::size_t w = 0; w < walls; ++w) {
     for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].wall_force[w];
-    series.open_dataset(wall_force_name(impl_->wall_names[w])).append_rows(pack<D>(vectors));
+    impl_->series_dataset(wall_force_name(impl_->wall_names[w])).append_rows(pack<D>(vectors));
     for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].wall_displacement[w];
-    series.open_dataset(wall_displacement_name(impl_->wall_names[w])).append_rows(pack<D>(vectors));
+    impl_->series_dataset(wall_displacement_name(impl_->wall_names[w])).append_rows(pack<D>(vectors));
   }
   impl_->file.flush();
 }
@@ -502,7 +401,6 @@ const std::vector<std::pair<const char*, double EnergyAccumulators::*>>& accumul
       {"gravity_work", &EnergyAccumulators::gravity_work},
       {"friction_work", &EnergyAccumulators::friction_work},
       {"dissipated", &EnergyAccumulators::dissipated},
-      {"impact_loss", &EnergyAccumulators::impact_loss},
       {"initial_energy", &EnergyAccumulators::initial_energy},
   };
   return fields;
@@ -581,11 +479,10 @@ void RunFile<D>::truncate_after(long long step) {
              list.end());
 
   // Rows are in step order: keep the leading rows with step ≤ `step`.
-  const h5::Group series = root.open_group("series");
-  const std::vector<std::int64_t> steps = series.read<std::int64_t>("step").values;
+  const std::vector<std::int64_t> steps = impl_->series_dataset("step").template read<std::int64_t>().values;
   const std::size_t keep = static_cast<std::size_t>(
       std::find_if(steps.begin(), steps.end(), [&](std::int64_t s) { return s > step; }) - steps.begin());
-  for (const std::string& name : series.children()) series.open_dataset(name).set_rows(keep);
+  for (const auto& [name, dataset] : impl_->series) dataset.set_rows(keep);
   impl_->file.flush();
   impl_->rewrite_xdmf();
 }
@@ -616,6 +513,11 @@ Particles<D> RunFile<D>::read_frame(int index, double* time, long long* step) co
   const h5::Group g = frames.open_group(name);
   if (time) *time = g.attribute_double("time");
   if (step) *step = g.attribute_int64("step");
+  return read_particle_datasets<D>(g);
+}
+
+template <int D>
+Particles<D> read_particle_datasets(const h5::Group& g) {
   const std::size_t n = g.open_dataset("x").rows(), d = D;
   Particles<D> p;
   p.resize(n, g.exists("temperature"));
@@ -643,6 +545,30 @@ std::vector<double> read_series(const std::string& path, const std::string& name
     throw RunFileError(path + ": /series/" + name + ": no such series");
   return root.read<double>("series/" + name).values;
 }
+
+template <int D>
+void write_particle_datasets(const h5::Group& g, const Particles<D>& particles,
+                             const std::vector<std::string>& fields) {
+  const std::size_t n = particles.size();
+  for (const std::string& field : all_frame_fields()) {
+    if (field != "x" && !fields.empty() && std::find(fields.begin(), fields.end(), field) == fields.end())
+      continue;
+    if (field == "temperature" && particles.temperature.empty()) continue;
+    if (field_size(particles, field) != n)
+      throw RunFileError(g.describe("particle array for '" + field + "' has " +
+                                    std::to_string(field_size(particles, field)) + " entries, expected " +
+                                    std::to_string(n)));
+    const h5::Dataset ds = write_field(g, particles, field);
+    const FieldInfo info = field_info<D>(field);
+    ds.set_attribute("units", info.units);
+    ds.set_attribute("description", info.description);
+  }
+}
+
+template void write_particle_datasets<2>(const h5::Group&, const Particles<2>&, const std::vector<std::string>&);
+template void write_particle_datasets<3>(const h5::Group&, const Particles<3>&, const std::vector<std::string>&);
+template Particles<2> read_particle_datasets<2>(const h5::Group&);
+template Particles<3> read_particle_datasets<3>(const h5::Group&);
 
 template class RunFile<2>;
 template class RunFile<3>;

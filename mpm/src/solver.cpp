@@ -43,14 +43,6 @@ std::string format_matrix(const Mat<D>& m) {
 /// from the far tail of a shape function, and dividing by it would amplify round-off.
 constexpr double negligible_node_mass_fraction = 1e-10;
 
-/// Per-thread scatter target, reduced in thread order after P2G (race-free without atomics).
-template <int D>
-struct ScatterBuffer {
-  std::vector<double> mass;
-  std::vector<Vec<D>> momentum;
-  std::vector<Vec<D>> force;
-};
-
 }  // namespace
 
 template <int D>
@@ -108,7 +100,14 @@ struct Solver<D>::Impl {
   GridIndex<D> grid;
   std::vector<double> node_mass;
   std::vector<Vec<D>> node_momentum, node_force, node_velocity_lumped, node_velocity;
-  std::vector<ScatterBuffer<D>> scatter;
+  // Race-free, thread-count-independent scatter: particles are binned into strips along direction 0
+  // that are wider than twice any stencil's reach, so strips of equal parity never share a node.
+  // Even strips scatter in parallel, then odd ones; within a strip particles go in index order, so
+  // every node sums its contributions in the same order whatever the number of threads.
+  std::int64_t strip_width = 3;         ///< cells per strip
+  double largest_half_extent = 0.0;     ///< largest stencil half-extent along direction 0 [cells]
+  std::vector<std::int64_t> strip_start, strip_order, strip_of;
+  int thread_slots = 1;
   IVec<D> domain_nodes;  ///< number of cells of the computational domain per direction
 
   explicit Impl(Problem<D> p) : problem(std::move(p)) {
@@ -166,11 +165,13 @@ struct Solver<D>::Impl {
     Vec<D> lower = Vec<D>::Constant(std::numeric_limits<double>::infinity());
     Vec<D> upper = -lower;
     std::int64_t outside = -1;
+    double largest = 0.0;
     const Vec<D> domain_min = problem.grid.min, domain_max = problem.grid.max;
     const ShapeFunctionKind kind = problem.grid.shape_function;
 #pragma omp parallel
     {
       Vec<D> lo = Vec<D>::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+      double half_extent = 0.0;
       std::int64_t first_outside = -1;
 #pragma omp for schedule(static) nowait
       for (std::int64_t p = 0; p < n; ++p) {
@@ -178,6 +179,7 @@ struct Solver<D>::Impl {
         stencil_bounds<D>(kind, P.x[p], P.domain[p], 0.5 * P.domain[p].diagonal().cwiseAbs(), a, b);
         lo = lo.cwiseMin(a);
         hi = hi.cwiseMax(b);
+        half_extent = std::max(half_extent, 0.5 * (b[0] - a[0]));
         if (first_outside < 0 && ((P.x[p] - domain_min).minCoeff() < 0.0 ||
                                   (domain_max - P.x[p]).minCoeff() < 0.0 || !P.x[p].allFinite()))
           first_outside = p;
@@ -186,6 +188,7 @@ struct Solver<D>::Impl {
       {
         lower = lower.cwiseMin(lo);
         upper = upper.cwiseMax(hi);
+        largest = std::max(largest, half_extent);
         if (first_outside >= 0 && (outside < 0 || first_outside < outside)) outside = first_outside;
       }
     }
@@ -209,6 +212,7 @@ struct Solver<D>::Impl {
       grid.lower[k] = first;
       grid.extent[k] = last - first + 1;
     }
+    largest_half_extent = largest * grid.inverse_cell_size;
     return std::nullopt;
   }
 
@@ -219,8 +223,33 @@ struct Solver<D>::Impl {
     node_force.assign(nodes, Vec<D>::Zero());
     node_velocity_lumped.resize(nodes);
     node_velocity.resize(nodes);
-    scatter.resize(static_cast<std::size_t>(omp_get_max_threads()));
+    thread_slots = omp_get_max_threads();
   }
+
+  /// Counting sort of particles into strips (stable: index order within a strip).
+  void bin_particles_into_strips() {
+    const auto& P = problem.particles;
+    const std::int64_t n = static_cast<std::int64_t>(P.size());
+    // A particle in cell c touches nodes c − ceil(e) … c + ceil(e) + 1 for half-extent e (cells).
+    strip_width = 2 * static_cast<std::int64_t>(std::ceil(largest_half_extent)) + 2;
+    const std::int64_t strips = (grid.extent[0] + strip_width - 1) / strip_width;
+    strip_start.assign(static_cast<std::size_t>(strips + 1), 0);
+    strip_of.resize(static_cast<std::size_t>(n));
+    strip_order.resize(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static)
+    for (std::int64_t p = 0; p < n; ++p) {
+      const std::int64_t cell = static_cast<std::int64_t>(
+          std::floor((P.x[p][0] - grid.origin[0]) * grid.inverse_cell_size)) - grid.lower[0];
+      strip_of[p] = std::clamp<std::int64_t>(cell / strip_width, 0, strips - 1);
+    }
+    for (std::int64_t p = 0; p < n; ++p) ++strip_start[strip_of[p] + 1];
+    for (std::int64_t s = 0; s < strips; ++s) strip_start[s + 1] += strip_start[s];
+    std::vector<std::int64_t>& cursor = strip_cursor;
+    cursor.assign(strip_start.begin(), strip_start.end() - 1);
+    for (std::int64_t p = 0; p < n; ++p) strip_order[cursor[strip_of[p]]++] = p;
+  }
+  std::vector<std::int64_t> strip_cursor;
+
 
   template <ShapeFunctionKind Kind>
   static void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<D>& g,
@@ -235,45 +264,30 @@ struct Solver<D>::Impl {
   template <ShapeFunctionKind Kind>
   void particles_to_grid() {
     const auto& P = problem.particles;
-    const std::int64_t n = static_cast<std::int64_t>(P.size());
-    const std::size_t nodes = node_mass.size();
     const Vec<D> gravity = problem.gravity;
+    bin_particles_into_strips();
+    const std::int64_t strips = static_cast<std::int64_t>(strip_start.size()) - 1;
+    for (std::int64_t parity = 0; parity < 2; ++parity) {
 #pragma omp parallel
-    {
-      const std::size_t team = static_cast<std::size_t>(omp_get_num_threads());
-      ScatterBuffer<D>& buffer = scatter[static_cast<std::size_t>(omp_get_thread_num())];
-      buffer.mass.assign(nodes, 0.0);
-      buffer.momentum.assign(nodes, Vec<D>::Zero());
-      buffer.force.assign(nodes, Vec<D>::Zero());
-      Stencil<D> s;
-#pragma omp for schedule(static)
-      for (std::int64_t p = 0; p < n; ++p) {
-        fill_stencil<Kind>(P, p, grid, s);
-        const double volume = P.volume0[p] * P.F[p].determinant();
-        const Mat<D> volume_stress = volume * P.stress[p];
-        const Vec<D> momentum = P.mass[p] * P.v[p];
-        const Vec<D> weight_force = P.mass[p] * gravity;
-        for (int e = 0; e < s.count; ++e) {
-          const std::size_t i = static_cast<std::size_t>(s.node[e]);
-          buffer.mass[i] += s.weight[e] * P.mass[p];
-          buffer.momentum[i] += s.weight[e] * momentum;
-          buffer.force[i] += s.weight[e] * weight_force - volume_stress * s.gradient[e];
+      {
+        Stencil<D> s;
+#pragma omp for schedule(dynamic, 1)
+        for (std::int64_t strip = parity; strip < strips; strip += 2) {
+          for (std::int64_t k = strip_start[strip]; k < strip_start[strip + 1]; ++k) {
+            const std::int64_t p = strip_order[k];
+            fill_stencil<Kind>(P, p, grid, s);
+            const double volume = P.volume0[p] * P.F[p].determinant();
+            const Mat<D> volume_stress = volume * P.stress[p];
+            const Vec<D> momentum = P.mass[p] * P.v[p];
+            const Vec<D> weight_force = P.mass[p] * gravity;
+            for (int e = 0; e < s.count; ++e) {
+              const std::size_t i = static_cast<std::size_t>(s.node[e]);
+              node_mass[i] += s.weight[e] * P.mass[p];
+              node_momentum[i] += s.weight[e] * momentum;
+              node_force[i] += s.weight[e] * weight_force - volume_stress * s.gradient[e];
+            }
+          }
         }
-      }
-      // Reduce in thread order so the sum does not depend on scheduling.
-#pragma omp for schedule(static)
-      for (std::int64_t i = 0; i < static_cast<std::int64_t>(nodes); ++i) {
-        double m = 0.0;
-        Vec<D> q = Vec<D>::Zero(), f = Vec<D>::Zero();
-        for (std::size_t t = 0; t < team; ++t) {
-          const ScatterBuffer<D>& b = scatter[t];
-          m += b.mass[i];
-          q += b.momentum[i];
-          f += b.force[i];
-        }
-        node_mass[i] = m;
-        node_momentum[i] = q;
-        node_force[i] = f;
       }
     }
   }
@@ -293,8 +307,10 @@ struct Solver<D>::Impl {
   }
 
   /// Rigid walls (004 §2.12: the material side takes the wall's velocity where it approaches).
-  /// Node impulses give the reaction force and, split into normal and tangential parts, the wall
-  /// work, the inelastic impact loss and the friction work exactly.
+  /// Node impulses J give each wall's reaction force and the wall work Σ J·v_wall. Friction work is
+  /// the tangential force times the slip it acts over, Σ |J_t|·|u_t| with u_t the slip velocity
+  /// left after the step: an energy measured with impulses, which FLIP transfers exactly, rather
+  /// than with nodal kinetic energies, which it does not.
   void apply_walls(double dt) {
     const std::int64_t nodes = static_cast<std::int64_t>(node_mass.size());
     const double tolerance = 1e-9 * grid.cell_size;
@@ -303,48 +319,41 @@ struct Solver<D>::Impl {
       const Vec<D> wall_velocity = wall.velocity.velocity(time + dt);
       const Vec<D> wall_point = wall.point + wall.velocity.displacement(time + dt);
       Vec<D> impulse_sum = Vec<D>::Zero();
-      double wall_work = 0.0, impact_loss = 0.0, friction_work = 0.0;
+      double work = 0.0, friction = 0.0;
+      // Serial and in node order: few nodes pass the plane test, and the sums must not depend on
+      // the thread count.
       for (std::int64_t i = 0; i < nodes; ++i) {
         const double m = node_mass[i];
         if (m <= negligible_mass) continue;
         const Vec<D> X = grid.position(grid.global(i));
-        if ((X - wall_point).dot(wall.normal) > tolerance) continue;
+        if ((X - wall_point).dot(wall.normal) > tolerance) continue;  // in front of the wall
         const Vec<D> relative = node_velocity[i] - wall_velocity;
         const double approach = relative.dot(wall.normal);
-        Vec<D> change = Vec<D>::Zero();
         const Vec<D> tangential = relative - approach * wall.normal;
+        Vec<D> change = Vec<D>::Zero();
         switch (wall.kind) {
-          case WallKind::fixed:
-            change = -relative;
-            impact_loss += 0.5 * m * relative.squaredNorm();
-            break;
-          case WallKind::roller:
-            change = -approach * wall.normal;
-            impact_loss += 0.5 * m * approach * approach;
-            break;
+          case WallKind::fixed: change = -relative; break;
+          case WallKind::roller: change = -approach * wall.normal; break;
           case WallKind::contact: {
-            if (approach >= 0.0) continue;
+            if (approach >= 0.0) continue;  // separating: no contact
             change = -approach * wall.normal;
-            impact_loss += 0.5 * m * approach * approach;
             const double slip = tangential.norm();
             if (slip > 0.0) {
               // Coulomb: the tangential velocity change is limited by μ times the normal one.
               const double fraction = std::min(1.0, wall.friction * (-approach) / slip);
               change -= fraction * tangential;
-              friction_work += m * fraction * (1.0 - 0.5 * fraction) * slip * slip;
+              friction += m * fraction * slip * (1.0 - fraction) * slip;
             }
             break;
           }
         }
         node_velocity[i] += change;
-        const Vec<D> impulse = m * change;
-        impulse_sum += impulse;
-        wall_work += impulse.dot(wall_velocity);
+        impulse_sum += m * change;
+        work += m * change.dot(wall_velocity);
       }
       row.wall_force[w] = -impulse_sum / dt;  // force of the material on the wall
-      totals.wall_work += wall_work;
-      totals.impact_loss += impact_loss;
-      totals.friction_work += friction_work;
+      totals.wall_work += work;
+      totals.friction_work += friction;
     }
   }
 
@@ -358,7 +367,7 @@ struct Solver<D>::Impl {
     const Vec<D> gravity = problem.gravity;
     double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, max_speed = 0.0;
     std::int64_t failed = -1;
-    std::vector<double> momentum_parts(static_cast<std::size_t>(D) * scatter.size(), 0.0);
+    std::vector<double> momentum_parts(static_cast<std::size_t>(D) * thread_slots, 0.0);
 #pragma omp parallel reduction(+ : kinetic, strain, gravity_work) reduction(max : max_speed)
     {
       Stencil<D> s;
@@ -416,11 +425,12 @@ struct Solver<D>::Impl {
       return failure;
     }
     row.momentum.setZero();
-    for (std::size_t t = 0; t < scatter.size(); ++t)
+    for (std::size_t t = 0; t < static_cast<std::size_t>(thread_slots); ++t)
       for (int k = 0; k < D; ++k) row.momentum[k] += momentum_parts[t * D + k];
     row.kinetic = kinetic;
     row.strain = strain;
     totals.gravity_work += gravity_work;
+
     next_dt_limit = max_speed > 0.0 ? problem.time.cfl * grid.cell_size / max_speed
                                     : std::numeric_limits<double>::infinity();
     return std::nullopt;
@@ -430,7 +440,7 @@ struct Solver<D>::Impl {
   std::optional<NumericalFailure> advance(double dt) {
     particles_to_grid<Kind>();
     update_grid_velocities(dt);
-    apply_walls(dt);
+    if (!problem.walls.empty()) apply_walls(dt);
     return grid_to_particles<Kind>(dt);
   }
 
@@ -457,8 +467,7 @@ struct Solver<D>::Impl {
     row.time = time;
     row.dt = dt;
     row.totals = totals;
-    row.balance_error = (row.kinetic + row.strain + totals.dissipated + totals.friction_work +
-                         totals.impact_loss) -
+    row.balance_error = (row.kinetic + row.strain + totals.dissipated + totals.friction_work) -
                         (totals.initial_energy + totals.wall_work + totals.gravity_work);
     for (std::size_t w = 0; w < problem.walls.size(); ++w)
       row.wall_displacement[w] = problem.walls[w].velocity.displacement(time);

@@ -53,7 +53,6 @@ void write_xdmf(const std::string& xmf_path, const std::string& h5_reference, in
                 const std::vector<XdmfFrame>& frames, const std::string& point_ids,
                 std::size_t point_ids_length) {
   const std::string d = std::to_string(dimension);
-  const char* axes = "xyz";
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
       << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
@@ -90,30 +89,16 @@ void write_xdmf(const std::string& xmf_path, const std::string& h5_reference, in
         << "        </Geometry>\n";
     for (const XdmfField& field : frame.fields) {
       const std::string hdf_path = prefix + field.name;
-      if (field.kind == XdmfField::Kind::tensor && dimension == 2) {
-        // One scalar per component: hyperslab (start; stride; count) of the N×2×2 dataset.
-        for (int i = 0; i < 2; ++i) {
-          for (int j = 0; j < 2; ++j) {
-            out << "        <Attribute Name=\"" << xml_escape(field.name) << '_' << axes[i] << axes[j]
-                << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-                << "          <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << n << " 1 1\" "
-                << number_attributes(field.number) << ">\n"
-                << "            <DataItem Dimensions=\"3 3\" NumberType=\"Int\" Format=\"XML\">0 " << i
-                << ' ' << j << " 1 1 1 " << n << " 1 1</DataItem>\n"
-                << data_item(n + " 2 2", field.number, hdf_path, "            ")
-                << "          </DataItem>\n"
-                << "        </Attribute>\n";
-          }
-        }
-        continue;
-      }
       const char* type = "Scalar";
       std::string dims = n;
       if (field.kind == XdmfField::Kind::vector) {
         type = "Vector";
         dims += " " + d;
       } else if (field.kind == XdmfField::Kind::tensor) {
-        type = "Tensor";
+        // The readers know only 3×3 tensors; a 2×2 one is a Matrix, which ParaView's Xdmf3 reader
+        // shows as one 4-component array (xx, xy, yx, yy). Hyperslab components are not an option:
+        // the XDMF 3 library applies multi-dimensional hyperslabs in Fortran order.
+        type = dimension == 3 ? "Tensor" : "Matrix";
         dims += " " + d + " " + d;
       }
       out << "        <Attribute Name=\"" << xml_escape(field.name) << "\" AttributeType=\"" << type

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   fragmpm::pipeline::add_run_command(app, result);
   fragmpm::pipeline::add_verify_command(app, result);
   fragmpm::pipeline::add_bench_command(app, result);
+  fragmpm::pipeline::add_segment_command(app, result);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -15,10 +15,18 @@ namespace {
 std::string format_scene_error(const std::string& file, int line, const std::string& key,
                                const std::string& detail) {
   std::string out = file;
-  if (line > 0) out += ":" + std::to_string(line);
+  if (line > 0) {
+    out += ':';
+    out += std::to_string(line);
+  }
   out += ": ";
-  if (!key.empty()) out += "key '" + key + "': ";
-  return out + detail;
+  if (!key.empty()) {
+    out += "key '";
+    out += key;
+    out += "': ";
+  }
+  out += detail;
+  return out;
 }
 }  // namespace
 

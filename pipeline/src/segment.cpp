@@ -5,6 +5,7 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <opencv2/core.hpp>
 
 #include "fragmpm/pipeline/segment_mask_input.hpp"
 #include "fragmpm/pipeline/segment_threshold.hpp"
@@ -52,6 +53,14 @@ void validate_segment_options(const SegmentOptions& o) {
     throw SegmentInputError(fmt::format("--marker-spacing must be ≥ 1 pixel, got {}", o.split.marker_spacing));
   if (!(o.split.neck_ratio >= 0.0 && o.split.neck_ratio <= 1.0))
     throw SegmentInputError(fmt::format("--neck-ratio must lie in [0, 1], got {}", o.split.neck_ratio));
+  if (o.preprocess.gap_radius < 0)
+    throw SegmentInputError(fmt::format("--gaps must be ≥ 0 pixels, got {}", o.preprocess.gap_radius));
+  if (o.preprocess.gap_radius > 0 && o.threshold.method == ThresholdMethod::fixed)
+    throw SegmentInputError(
+        "--level (fixed threshold) cannot be combined with --gaps: the gap image no longer has the "
+        "image's grey levels; use --threshold otsu or triangle");
+  if (!(o.grow >= 0.0) || !std::isfinite(o.grow))
+    throw SegmentInputError(fmt::format("--grow must be ≥ 0 pixels, got {}", o.grow));
   if (o.threshold.method == ThresholdMethod::adaptive &&
       (o.threshold.adaptive_block < 3 || o.threshold.adaptive_block % 2 == 0))
     throw SegmentInputError(fmt::format("--block must be an odd number of pixels ≥ 3, got {}",
@@ -70,14 +79,15 @@ Segmentation segment(LoadedImage input, const SegmentOptions& options) {
     case InputKind::grey: {
       const WorkingImage work = working_image(input.grey, options.preprocess);
       const ThresholdResult thr = threshold_grains(work, options.threshold, name);
-      if (!std::isnan(thr.level)) s.threshold_level = image_level(work, thr.level);
+      // With gap detection the level is on the gap image's own 0–255 scale.
+      if (!std::isnan(thr.level)) s.threshold_level = work.gaps ? thr.level : image_level(work, thr.level);
       const cv::Mat mask = clean_mask(thr.mask, options.cleanup);
       const std::string how =
           std::isnan(thr.level)
               ? fmt::format("adaptive threshold, block {} px, offset {}", options.threshold.adaptive_block,
                             options.threshold.adaptive_offset)
-              : fmt::format("{} threshold at grey level {:.6g}", method_name(options.threshold.method),
-                            s.threshold_level);
+              : fmt::format("{} threshold at {} level {:.6g}", method_name(options.threshold.method),
+                            work.gaps ? "gap-image" : "grey", s.threshold_level);
       check_mask_has_both(mask, name, how);
       labels = split_touching_grains(mask, options.split);
       break;
@@ -86,8 +96,20 @@ Segmentation segment(LoadedImage input, const SegmentOptions& options) {
     case InputKind::labels: labels = labels_from_label_image(input.grey, name); break;
   }
   if (options.cleanup.fill_holes) fill_enclosed_holes(labels);
+  // Small grains go before growing, or every speck would grow into a grain.
+  cv::Mat removed;
+  std::int64_t removed_small = 0;
+  if (options.grow > 0.0) {
+    removed_small = remove_small_grains(labels, options.min_area, removed);
+    grow_labels(labels, options.grow);
+  }
   s.table = measure_grains(labels, input.grey, options.pixel_size, options.min_area,
                            options.drop_border, options.phase_bands);
+  if (removed_small > 0) {
+    s.table.dropped_small += removed_small;
+    const cv::Mat still_background = removed & (s.table.labels == 0);
+    cv::bitwise_or(s.table.dropped, still_background, s.table.dropped);
+  }
   if (s.table.grains.empty())
     throw SegmentInputError(fmt::format(
         "{}: no grains left: {} smaller than --min-area {} px{}", name, s.table.dropped_small,

@@ -120,6 +120,15 @@ WorkingImage working_image(const cv::Mat& grey, const PreprocessOptions& options
       break;
     }
   }
+  if (options.gap_radius > 0) {
+    // Black top-hat: closing − image is large only in dark features narrower than the disk.
+    cv::Mat closed;
+    const int g = options.gap_radius;
+    cv::morphologyEx(w.image, closed, cv::MORPH_CLOSE,
+                     cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * g + 1, 2 * g + 1)));
+    w.image = 255 - (closed - w.image);
+    w.gaps = true;
+  }
   if (options.equalize) {
     auto clahe = cv::createCLAHE(2.0, cv::Size(8, 8));
     clahe->apply(w.image, w.image);

@@ -43,14 +43,16 @@ cv::Mat display_background(const Segmentation& s) {
 }
 
 // Bright, mutually distinct outline colours (BGR); red is kept for dropped grains.
-constexpr std::array<cv::Vec3b, 8> kPalette{{{0, 255, 255},   // yellow
-                                             {255, 255, 0},   // cyan
-                                             {0, 255, 0},     // green
-                                             {255, 0, 255},   // magenta
-                                             {0, 165, 255},   // orange
-                                             {255, 128, 0},   // azure
-                                             {128, 255, 128}, // light green
-                                             {255, 128, 255}}};  // pink
+const std::array<cv::Vec3b, 8> kPalette{
+    cv::Vec3b(0, 255, 255),    // yellow
+    cv::Vec3b(255, 255, 0),    // cyan
+    cv::Vec3b(0, 255, 0),      // green
+    cv::Vec3b(255, 0, 255),    // magenta
+    cv::Vec3b(0, 165, 255),    // orange
+    cv::Vec3b(255, 128, 0),    // azure
+    cv::Vec3b(128, 255, 128),  // light green
+    cv::Vec3b(255, 128, 255),  // pink
+};
 
 }  // namespace
 

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <random>
 
+#include <opencv2/core.hpp>
+
 namespace fragmpm::pipeline {
 
 namespace {

@@ -139,7 +139,7 @@ cv::Mat split_touching_grains(const cv::Mat& mask, const SplitOptions& options) 
       if (a == 0) continue;
       const float da = dist.at<float>(r, c);
       peak[static_cast<std::size_t>(a)] = std::max(peak[static_cast<std::size_t>(a)], da);
-      for (const auto [dr, dc] : {std::pair{1, 0}, std::pair{0, 1}}) {  // each pixel pair once
+      for (const auto& [dr, dc] : {std::pair{1, 0}, std::pair{0, 1}}) {  // each pixel pair once
         const int rr = r + dr, cc = c + dc;
         if (rr >= labels.rows || cc >= labels.cols) continue;
         const std::int32_t b = labels.at<std::int32_t>(rr, cc);
@@ -215,6 +215,35 @@ void fill_enclosed_holes(cv::Mat& labels) {
     for (int c = 0; c < cols; ++c)
       if (const int k = comp.at<int>(r, c); k > 0 && owner[static_cast<std::size_t>(k)] > 0)
         labels.at<std::int32_t>(r, c) = owner[static_cast<std::size_t>(k)];
+}
+
+std::int64_t remove_small_grains(cv::Mat& labels, std::int64_t min_area, cv::Mat& removed) {
+  if (removed.empty()) removed = cv::Mat::zeros(labels.size(), CV_8U);
+  double max_label = 0.0;
+  cv::minMaxLoc(labels, nullptr, &max_label);
+  std::vector<std::int64_t> count(static_cast<std::size_t>(max_label) + 1, 0);
+  for (int r = 0; r < labels.rows; ++r)
+    for (int c = 0; c < labels.cols; ++c)
+      if (const std::int32_t l = labels.at<std::int32_t>(r, c); l > 0) ++count[static_cast<std::size_t>(l)];
+  std::int64_t dropped = 0;
+  for (std::size_t l = 1; l < count.size(); ++l) dropped += count[l] > 0 && count[l] < min_area;
+  for (int r = 0; r < labels.rows; ++r)
+    for (int c = 0; c < labels.cols; ++c) {
+      std::int32_t& l = labels.at<std::int32_t>(r, c);
+      if (l > 0 && count[static_cast<std::size_t>(l)] < min_area) {
+        l = 0;
+        removed.at<unsigned char>(r, c) = 255;
+      }
+    }
+  return dropped;
+}
+
+void grow_labels(cv::Mat& labels, double radius) {
+  if (!(radius > 0.0)) return;
+  cv::Mat background = labels == 0, dist;
+  cv::distanceTransform(background, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  const cv::Mat allowed = (labels > 0) | (dist <= radius);
+  labels = flood_labels(labels, allowed);
 }
 
 }  // namespace fragmpm::pipeline

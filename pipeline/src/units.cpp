@@ -126,7 +126,10 @@ std::string describe_dims(const Dims& d) {
     if (d[i] == 0) continue;
     if (!out.empty()) out += ' ';
     out += base[i];
-    if (d[i] != 1) out += "^" + std::to_string(d[i]);
+    if (d[i] != 1) {
+      out += '^';
+      out += std::to_string(d[i]);
+    }
   }
   return out.empty() ? "dimensionless" : "a quantity in " + out;
 }

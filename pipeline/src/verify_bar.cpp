@@ -51,7 +51,7 @@ VerifyRow run_bar_level(const std::string& variant, int level, int cells_along_b
   // RMS over one period by the trapezoidal rule in time (steps are not uniform at the end).
   double squared_integral = 0.0, previous_error = solver.last_row().momentum[0] / total_mass - amplitude;
   previous_error *= previous_error;
-  double smallest_dt = std::numeric_limits<double>::infinity();
+  double largest_dt = 0.0;  // the last step is shortened to end on the period
   const auto start = std::chrono::steady_clock::now();
   while (solver.time() < period * (1.0 - 1e-12)) {
     if (auto failure = solver.step(period - solver.time()))
@@ -61,7 +61,7 @@ VerifyRow run_bar_level(const std::string& variant, int level, int cells_along_b
     const double error = row.momentum[0] / total_mass - exact;
     squared_integral += 0.5 * row.dt * (error * error + previous_error);
     previous_error = error * error;
-    smallest_dt = std::min(smallest_dt, row.dt);
+    largest_dt = std::max(largest_dt, row.dt);
   }
   VerifyRow r;
   r.case_name = "bar";
@@ -69,7 +69,7 @@ VerifyRow run_bar_level(const std::string& variant, int level, int cells_along_b
   r.level = level;
   r.cell_size = cell_size;
   r.particles = static_cast<long long>(solver.particles().size());
-  r.dt = smallest_dt;
+  r.dt = largest_dt;
   r.steps = solver.step_count();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.metric = "vcm_rms_error/amplitude";

@@ -182,8 +182,7 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   c.totals.gravity_work = -1e-300;
   c.totals.friction_work = 5e-324;  // subnormal
   c.totals.dissipated = 2.0 / 7.0;
-  c.totals.impact_loss = 1e300;
-  c.totals.initial_energy = -0.0;
+  c.totals.initial_energy = 1e300;
   c.particles = random_particles(29, true, 4);
   c.particles.x[3](1) = -0.0;
   c.particles.v[4](0) = 4.9e-324;
@@ -204,7 +203,7 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   for (double EnergyAccumulators::*m :
        {&EnergyAccumulators::wall_work, &EnergyAccumulators::gravity_work,
         &EnergyAccumulators::friction_work, &EnergyAccumulators::dissipated,
-        &EnergyAccumulators::impact_loss, &EnergyAccumulators::initial_energy})
+        &EnergyAccumulators::initial_energy})
     EXPECT_EQ(std::memcmp(&(r->totals.*m), &(c.totals.*m), sizeof(double)), 0);
   const Particles<2>& p = c.particles;
   const Particles<2>& q = r->particles;
@@ -301,6 +300,15 @@ TEST(RunFile, SeriesRowWithWrongWallCountIsRejected) {
   EXPECT_THROW(run.append_series({r}), RunFileError);
 }
 
+TEST(RunFile, BadWallNamesAreRejected) {
+  for (const std::vector<std::string>& walls :
+       {std::vector<std::string>{"a/b"}, {"top", "top"}, {""}, {"two\nlines"}}) {
+    RunMeta meta = test_meta();
+    meta.wall_names = walls;
+    EXPECT_THROW(RunFile<2>::create(temp_path("bad_wall"), meta, false), RunFileError);
+  }
+}
+
 TEST(RunFile, CreateRefusesExistingFile) {
   const std::string path = temp_path("exists");
   { auto run = RunFile<2>::create(path, test_meta(), false); }
@@ -364,15 +372,50 @@ TEST(RunFile, XdmfDescribesEveryFrame) {
   EXPECT_EQ(count(text, "GeometryType=\"XY\""), 3u);
   EXPECT_EQ(count(text, "Dimensions=\"6 2\""), 3u * 4u);  // x, v, r1, r2
   EXPECT_EQ(count(text, name + ":/xdmf/point_ids"), 3u);  // Polyvertex connectivity
-  EXPECT_EQ(count(text, "Name=\"F_xy\""), 3u);
+  EXPECT_EQ(count(text, "Name=\"F\" AttributeType=\"Matrix\""), 3u);
+  EXPECT_EQ(count(text, "Dimensions=\"6 2 2\""), 3u * 2u);  // F, stress
   EXPECT_EQ(count(text, "Name=\"temperature\""), 3u);
-  EXPECT_EQ(count(text, "<Attribute "), 3u * (3u + 4u + 4u + 7u));  // vectors, F, stress, scalars
+  EXPECT_EQ(count(text, "<Attribute "), 3u * (3u + 2u + 7u));  // vectors, tensors, scalars
 
   run.truncate_after(10);
   const std::string truncated = read_text(xmf);
   EXPECT_TRUE(balanced_xml(truncated, &error)) << error;
   EXPECT_EQ(truncated.find("/frames/000002/"), std::string::npos);
   EXPECT_EQ(count(truncated, "<Time "), 2u);
+
+  // A smaller frame takes the first N point ids through a hyperslab.
+  run.write_frame(20, 0.2, random_particles(3, false, 20), {});
+  const std::string smaller = read_text(xmf);
+  EXPECT_TRUE(balanced_xml(smaller, &error)) << error;
+  EXPECT_NE(smaller.find("Format=\"XML\">0 1 3</DataItem>"), std::string::npos);
+  EXPECT_EQ(count(smaller, "<Time "), 3u);
+}
+
+TEST(RunFile, ThreeDimensionalRoundTrip) {
+  const std::string path = temp_path("three_d");
+  RunMeta meta = test_meta();
+  meta.wall_names = {"floor"};
+  auto run = RunFile<3>::create(path, meta, false);
+  Checkpoint<3> c;
+  c.step = 7;
+  c.particles.resize(4);
+  for (std::size_t p = 0; p < 4; ++p) {
+    c.particles.x[p] = Vec<3>(1.0 / (p + 1.0), 2.0, 3.0);
+    c.particles.domain[p] << 1, 2, 3, 4, 5, 6, 7, 8, 9.0 / (p + 1.0);
+    c.particles.F[p] = Mat<3>::Identity() * (1.0 + 0.1 * static_cast<double>(p));
+  }
+  run.write_frame(7, 0.5, c.particles, {});
+  run.write_checkpoint(c);
+  const Particles<3> frame = run.read_frame(0);
+  EXPECT_TRUE(same_bits_eigen(frame.x, c.particles.x));
+  EXPECT_TRUE(same_bits_eigen(frame.F, c.particles.F));
+  EXPECT_EQ(frame.domain[2].col(1), c.particles.domain[2].col(1));  // frames hold r1 and r2 only
+  const auto r = run.read_checkpoint();
+  ASSERT_TRUE(r.has_value());
+  EXPECT_TRUE(same_bits_eigen(r->particles.domain, c.particles.domain));
+  const std::string xmf = read_text(std::filesystem::path(path).replace_extension(".xmf").string());
+  EXPECT_EQ(count(xmf, "GeometryType=\"XYZ\""), 1u);
+  EXPECT_EQ(count(xmf, "AttributeType=\"Tensor\""), 2u);
 }
 
 }  // namespace

@@ -104,35 +104,55 @@ TEST(Solver, MomentumConservedInFreeFlight) {
     for (double pic : {0.0, 0.3}) {
       mpm::Solver<2> solver(block(shape, pic));
       const Vec<2> p0 = solver.last_row().momentum;
+      double scale = 0.0;  // Σ m|v|: round-off is relative to the momenta being added up
+      for (std::size_t p = 0; p < solver.particles().size(); ++p)
+        scale += solver.particles().mass[p] * solver.particles().v[p].norm();
       for (int s = 0; s < 200; ++s) ASSERT_FALSE(solver.step());
       const Vec<2> p1 = solver.last_row().momentum;
-      EXPECT_LT((p1 - p0).norm() / p0.norm(), 1e-12) << shape << " pic " << pic;
+      EXPECT_LT((p1 - p0).norm() / scale, 1e-12) << shape << " pic " << pic;
     }
   }
 }
 
 TEST(Solver, EnergyConservedInFreeElasticVibration) {
-  // Pure FLIP, CPDI, CFL 0.3, 1500 steps (about two periods of the block's lowest modes): the
-  // explicit scheme conserves kinetic + strain energy to within 0.5 %.
-  mpm::Solver<2> solver(block("cpdi", 0.0));
+  // Fundamental longitudinal mode of a free 10 mm block, v_x = v0 cos(πx/L), resolved by 20 cells
+  // (h = 0.5 mm), pure FLIP, CFL 0.3, six periods (T = 2L/c ≈ 10 μs). Explicit symplectic stepping
+  // makes kinetic + strain oscillate by O(ω Δt); it must not drift. Measured: max deviation 4.2 %,
+  // last-period mean within 0.3 % of E0. (At h = 1 mm the same mode loses 15 % in six periods:
+  // MPM's numerical dissipation of under-resolved modes.)
+  std::string text = block_scene;
+  text.replace(text.find("\"1 mm\""), 6, "\"0.5 mm\"");
+  const std::string drift = "velocity = [\"3 m/s\", \"-2 m/s\"]";
+  text.replace(text.find(drift), drift.size(), "");
+  auto problem = pipeline::parse_scene(text, "vibration.toml");
+  for (std::size_t p = 0; p < problem.particles.size(); ++p)
+    problem.particles.v[p] = Vec<2>(std::cos(std::numbers::pi * problem.particles.x[p][0] / 0.01), 0.0);
+  mpm::Solver<2> solver(std::move(problem));
   const double e0 = solver.last_row().kinetic + solver.last_row().strain;
-  double worst = 0.0, strain_peak = 0.0;
-  for (int s = 0; s < 1500; ++s) {
+  const double period = 1e-5;
+  double worst = 0.0, strain_peak = 0.0, last_period_sum = 0.0, last_period_time = 0.0;
+  while (solver.time() < 6 * period) {
     ASSERT_FALSE(solver.step());
     const auto& row = solver.last_row();
-    worst = std::max(worst, std::abs(row.kinetic + row.strain - e0) / e0);
+    const double e = row.kinetic + row.strain;
+    worst = std::max(worst, std::abs(e - e0) / e0);
     strain_peak = std::max(strain_peak, row.strain);
+    if (row.time > 5 * period) {
+      last_period_sum += e * row.dt;
+      last_period_time += row.dt;
+    }
   }
-  EXPECT_GT(strain_peak, 0.1 * e0 * 0.1);  // energy really moves between kinetic and strain
-  EXPECT_LT(worst, 5e-3);
-  EXPECT_LT(std::abs(solver.last_row().balance_error) / e0, 5e-3);
+  EXPECT_GT(strain_peak, 0.8 * e0);  // the energy really moves between kinetic and strain
+  EXPECT_LT(worst, 0.06);
+  EXPECT_NEAR(last_period_sum / last_period_time / e0, 1.0, 0.01);
 }
 
 TEST(Solver, WallReactionEqualsMomentumChange) {
   // A block hits a frictional floor at 2 m/s: the impulse of the material on the wall, Σ F dt,
   // is minus the change of the material's momentum.
   std::string text = block_scene;
-  text.replace(text.find("velocity = [\"3 m/s\", \"-2 m/s\"]"), 31, "velocity = [\"1 m/s\", \"-2 m/s\"]");
+  const std::string drift = "velocity = [\"3 m/s\", \"-2 m/s\"]";
+  text.replace(text.find(drift), drift.size(), "velocity = [\"1 m/s\", \"-2 m/s\"]");
   text += R"(
 [[walls]]
 name = "floor"

@@ -79,7 +79,9 @@ void expect_scene_error(const std::string& text, const std::string& line_marker,
     EXPECT_EQ(e.line, line) << what;
     EXPECT_EQ(e.key, key) << what;
     EXPECT_NE(what.find("bad.toml:" + std::to_string(line) + ": "), std::string::npos) << what;
-    if (!key.empty()) EXPECT_NE(what.find("key '" + key + "'"), std::string::npos) << what;
+    if (!key.empty()) {
+      EXPECT_NE(what.find("key '" + key + "'"), std::string::npos) << what;
+    }
     EXPECT_NE(what.find(explanation), std::string::npos) << what;
   }
 }
@@ -171,9 +173,13 @@ radius = "4 mm")");
     const double depth = r - (p.particles.x[k] - Eigen::Vector2d(10e-3, 10e-3)).norm();
     EXPECT_GE(depth, 0.0);
     // A surface particle has a neighbour (at most √2 s away) outside the disk.
-    if (p.particles.surface[k]) EXPECT_LT(depth, std::sqrt(2.0) * s);
+    if (p.particles.surface[k]) {
+      EXPECT_LT(depth, std::sqrt(2.0) * s);
+    }
     // A particle deeper than √2 s has all eight neighbours inside.
-    if (depth >= std::sqrt(2.0) * s) EXPECT_EQ(p.particles.surface[k], 0);
+    if (depth >= std::sqrt(2.0) * s) {
+      EXPECT_EQ(p.particles.surface[k], 0);
+    }
   }
   EXPECT_NEAR(area, std::numbers::pi * r * r, 0.02 * std::numbers::pi * r * r);
   EXPECT_NEAR(mass, rho * area, 1e-12 * mass);
@@ -252,6 +258,21 @@ max = ["8 mm", "4 mm"]
   EXPECT_NE(err.find("'right' overlaps body 'block' at 64 particle sites"), std::string::npos) << err;
 }
 
+TEST(Scene, ShapeTouchingTheDomainEdgeIsInside) {
+  // 1.2 mm − 1 mm is 0.19999999999999987 mm in floating point: round-off must not count as outside.
+  std::string text = replace(kGood, "min = [\"0 mm\", \"0 mm\"]", "min = [\"0.2 mm\", \"0 mm\"]");
+  text = replace(text, "[[walls]]", R"([[bodies]]
+name = "edge"
+material = "glass"
+shape = "disk"
+center = ["1.2 mm", "10 mm"]
+radius = "1 mm"
+
+[[walls]])");
+  const mpm::Problem<2> p = fp::parse_scene(text, "edge.toml");
+  EXPECT_GT(count_body(p.particles, 1), 0u);
+}
+
 TEST(Scene, PolygonsExactAndApproximate) {
   // An L of two lattice-aligned rectangles: exactly 16 x 8 + 8 x 8 points.
   const std::string l_shape = replace(kGood, R"(shape = "box"
@@ -260,16 +281,18 @@ max = ["6 mm", "4 mm"])",
                                       R"(shape = "polygon"
 vertices = [["2 mm", "2 mm"], ["6 mm", "2 mm"], ["6 mm", "4 mm"], ["4 mm", "4 mm"], ["4 mm", "6 mm"], ["2 mm", "6 mm"]])");
   EXPECT_EQ(fp::parse_scene(l_shape, "l.toml").particles.size(), 128u + 64u);
-  // A right triangle with legs of 8 mm, clockwise: area 32 mm² within 2%.
+  // A right triangle with legs of a = 8.125 mm on lattice cell edges, clockwise; its hypotenuse
+  // x + y = 12.125 mm passes between lattice points (x + y = (i + j + 1) s): area a²/2 within 2%.
   const std::string triangle = replace(kGood, R"(shape = "box"
 min = ["2 mm", "2 mm"]
 max = ["6 mm", "4 mm"])",
                                        R"(shape = "polygon"
-vertices = [[0.002, 0.002], [0.002, 0.010], [0.010, 0.002]])");
+vertices = [[0.002, 0.002], [0.002, 0.010125], [0.010125, 0.002]])");
   const mpm::Problem<2> p = fp::parse_scene(triangle, "tri.toml");
   double area = 0.0;
   for (double v : p.particles.volume0) area += v;
-  EXPECT_NEAR(area, 32e-6, 0.02 * 32e-6);
+  const double a = 8.125e-3;
+  EXPECT_NEAR(area, a * a / 2, 0.02 * a * a / 2);
 }
 
 TEST(Scene, WallHistoriesPlatenStopAndOutput) {

@@ -5,7 +5,7 @@
 //   /frames/NNNNNN/       attributes time, step; datasets x, v, F, volume0, mass, r1, r2, stress,
 //                         damage, surface, body, material (+ temperature when thermal)
 //   /series/              time, dt, kinetic, strain, thermal, dissipated, friction_work, wall_work,
-//                         gravity_work, impact_loss, balance_error, momentum (steps×D), step,
+//                         gravity_work, balance_error, momentum (steps×D), step,
 //                         wall_<name>_force (steps×D), wall_<name>_displacement (steps×D)
 //   /checkpoint/          the full state for an exact restart
 #include <memory>
@@ -82,5 +82,14 @@ class RunFile {
 
 /// Reads one dataset of /series as a flat vector (row-major for steps×D datasets).
 std::vector<double> read_series(const std::string& path, const std::string& name);
+
+/// Writes the frame datasets of `particles` (DESIGN §5 layout and units attributes; `fields` empty =
+/// all, x always) into `group`. Used for run frames and for the /particles group of grain files.
+template <int D>
+void write_particle_datasets(const h5::Group& group, const Particles<D>& particles,
+                             const std::vector<std::string>& fields);
+/// Reads the frame datasets of `group`; fields not stored keep the defaults of Particles::resize.
+template <int D>
+Particles<D> read_particle_datasets(const h5::Group& group);
 
 }  // namespace fragmpm::mpm

@@ -13,9 +13,6 @@ struct EnergyAccumulators {
   double gravity_work = 0.0;   ///< work done by gravity [J]
   double friction_work = 0.0;  ///< dissipated by friction at walls and contacts [J]
   double dissipated = 0.0;     ///< dissipated by damage [J]
-  /// Kinetic energy removed when the grid contact stops the approach at a node: the MPM node-level
-  /// impact is perfectly inelastic, so this is a modelling loss, kept apart from the balance error.
-  double impact_loss = 0.0;
   double initial_energy = 0.0; ///< kinetic + strain at step 0 [J]
 };
 
@@ -26,8 +23,11 @@ struct SeriesRow {
   double time = 0.0, dt = 0.0;
   double kinetic = 0.0, strain = 0.0, thermal = 0.0;
   EnergyAccumulators totals;
-  /// (kinetic + strain + dissipated + friction_work + impact_loss) − (initial + wall_work + gravity_work);
-  /// zero for an exact conservative scheme.
+  /// (kinetic + strain + dissipated + friction_work) − (initial + wall_work + gravity_work): zero
+  /// for an exact conservative scheme. Grid contact is perfectly inelastic at a node, and with FLIP
+  /// the particles keep their own velocities, so the kinetic energy an impact removes cannot be
+  /// isolated from the rest of the step: inelastic contact losses appear here, together with the
+  /// scheme's numerical dissipation.
   double balance_error = 0.0;
   Vec<D> momentum = Vec<D>::Zero();
   std::vector<Vec<D>> wall_force;         ///< reaction exerted by the material on each wall [N per unit thickness]

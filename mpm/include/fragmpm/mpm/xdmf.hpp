@@ -30,8 +30,8 @@ struct XdmfFrame {
 /// its file name relative to the .xmf. `point_ids` is the absolute path of a 1-D int32 dataset
 /// holding 0, 1, …, `point_ids_length` − 1 (at least as long as the largest frame): ParaView's Xdmf3
 /// reader builds no cells from a Polyvertex topology without connectivity, so every frame uses its
-/// first N entries. 2D tensors become scalar components (F_xx, F_xy, …) through hyperslabs, because
-/// the readers only know 3×3 tensors. Throws RunFileError if it cannot write.
+/// first N entries. 3D tensors are Tensor attributes, 2D ones Matrix attributes (N×2×2). Throws
+/// RunFileError if it cannot write.
 void write_xdmf(const std::string& xmf_path, const std::string& h5_reference, int dimension,
                 const std::vector<XdmfFrame>& frames, const std::string& point_ids,
                 std::size_t point_ids_length);

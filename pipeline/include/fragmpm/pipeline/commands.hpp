@@ -13,5 +13,6 @@ struct CommandResult {
 void add_run_command(CLI::App& app, CommandResult& result);
 void add_verify_command(CLI::App& app, CommandResult& result);
 void add_bench_command(CLI::App& app, CommandResult& result);
+void add_segment_command(CLI::App& app, CommandResult& result);
 
 }  // namespace fragmpm::pipeline

@@ -39,6 +39,9 @@ struct WorkingImage {
   double lo = 0.0;     ///< image level mapped to 0 (before inversion)
   double hi = 255.0;   ///< image level mapped to 255 (before inversion)
   bool inverted = false;
+  /// Gap detection replaced the grey levels (PreprocessOptions::gap_radius): fixed levels no longer
+  /// refer to the image's own units.
+  bool gaps = false;
 
   /// Working-image level of a grey level in the image's own units.
   double working_level(double image_level) const;
@@ -46,7 +49,8 @@ struct WorkingImage {
 
 /// Builds the working image from `grey`: 8-bit images are used as they are, deeper ones (16-bit,
 /// float) are stretched linearly from their minimum to their maximum onto 0–255 (as ImageJ does
-/// for automatic thresholds); then optional inversion, denoising and CLAHE equalisation.
+/// for automatic thresholds); then optional inversion, denoising, gap detection and CLAHE
+/// equalisation.
 WorkingImage working_image(const cv::Mat& grey, const PreprocessOptions& options);
 
 }  // namespace fragmpm::pipeline

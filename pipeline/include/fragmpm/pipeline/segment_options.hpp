@@ -27,11 +27,17 @@ enum class InputKind {
 enum class ThresholdMethod { otsu, triangle, adaptive, fixed };
 enum class DenoiseMethod { none, median, gaussian, bilateral };
 
-/// Turning a grey image into an 8-bit working image (order: invert, stretch, denoise, equalise).
+/// Turning a grey image into an 8-bit working image (order: stretch, invert, denoise, gap
+/// detection, equalise).
 struct PreprocessOptions {
   bool invert = false;             ///< grains darker than the background
   DenoiseMethod denoise = DenoiseMethod::none;
   int denoise_radius = 2;          ///< [px] half-width of the filter window (σ for gaussian)
+  /// [px] 0 = off. For packed grains of any brightness separated by dark gaps (photographs of
+  /// sand and gravel): the working image becomes 255 minus the black top-hat with a disk of this
+  /// radius, so features darker than their surroundings and narrower than about twice the radius
+  /// (the gaps) are dark and everything broader (the grains, bright or dark) is bright.
+  int gap_radius = 0;
   bool equalize = false;           ///< CLAHE contrast equalisation
 };
 
@@ -88,6 +94,10 @@ struct SegmentOptions {
   SplitOptions split;
   ClassMaskOptions classes;
   std::int64_t min_area = 16;        ///< [px] grains with fewer pixels are dropped
+  /// [px] 0 = off. After splitting (and dropping grains under min_area), grains grow into the
+  /// background by up to this distance, each pixel joining the nearest grain, never merging two:
+  /// for packed grains whose dark gaps are boundaries between them rather than pores.
+  double grow = 0.0;
   bool drop_border = false;          ///< drop grains cut by the (cropped) image border
   /// Grey-level band limits, ascending, in the image's own units: a grain whose mean grey level is
   /// below phase_bands[0] is phase 0, between [0] and [1] phase 1, …; empty = one phase.

@@ -4,6 +4,8 @@
 //
 // OpenCV's cv::watershed ranks pixels by the colour difference to their neighbour rather than by
 // height, so it cannot flood a distance map; the priority flood here does (Meyer's algorithm).
+#include <cstdint>
+
 #include <opencv2/core/mat.hpp>
 
 #include "fragmpm/pipeline/segment_options.hpp"
@@ -35,5 +37,13 @@ void fill_enclosed_holes(cv::Mat& labels);
 
 /// Renumbers labels > 0 to 1..N in raster order of first appearance; returns N.
 int compact_labels(cv::Mat& labels);
+
+/// Sets the labels of grains with fewer than `min_area` pixels to 0, marks their pixels 255 in
+/// `removed` (CV_8UC1, allocated if empty) and returns how many grains were removed.
+std::int64_t remove_small_grains(cv::Mat& labels, std::int64_t min_area, cv::Mat& removed);
+
+/// Grows every grain into the background pixels within Euclidean distance `radius` [px] of some
+/// grain; each such pixel joins the grain nearest to it in 4-connected steps, so grains never merge.
+void grow_labels(cv::Mat& labels, double radius);
 
 }  // namespace fragmpm::pipeline

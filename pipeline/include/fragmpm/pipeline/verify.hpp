@@ -16,7 +16,7 @@ struct VerifyRow {
   int level = 0;
   double cell_size = 0.0;  ///< [m]
   long long particles = 0;
-  double dt = 0.0;         ///< smallest step used [s]
+  double dt = 0.0;         ///< largest (typical) step used [s]
   long long steps = 0;
   double wall_seconds = 0.0;
   std::string metric;
