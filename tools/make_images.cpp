@@ -60,11 +60,11 @@ int main(int argc, char** argv) {
   fp::SyntheticImage noisy = fp::synthetic_disks();
   fp::add_gaussian_noise(noisy.image, 30.0, 11);
   write(syn / "noisy_disks.png", noisy.image, kPng);
-  // 16-bit TIFF: the touching pairs at 1000 … 52000 with σ = 2000 noise (LZW compressed).
+  // 16-bit TIFF: the touching pairs at 1000 … 52000 with σ = 2000 noise (Deflate compressed).
   fp::SyntheticImage pairs = fp::synthetic_touching_pairs();
   cv::Mat deep = fp::to_16bit(pairs.image);
   fp::add_gaussian_noise(deep, 2000.0, 13);
-  write(syn / "touching_pairs_16bit.tif", deep, {cv::IMWRITE_TIFF_COMPRESSION, 5});
+  write(syn / "touching_pairs_16bit.tif", deep, {cv::IMWRITE_TIFF_COMPRESSION, 8});
 
   if (argc == 4) {
     const fs::path data = argv[3];
