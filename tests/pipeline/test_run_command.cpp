@@ -1,0 +1,123 @@
+// `fragmpm run` end to end: exit codes for bad input and numerical failure, refusal to overwrite, the
+// run file's contents, and a restart that reproduces an uninterrupted run bit for bit.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "fragmpm/mpm/run_file.hpp"
+
+namespace fs = std::filesystem;
+using namespace fragmpm;
+
+namespace {
+
+int run_fragmpm(const std::string& arguments, const std::string& log) {
+  const std::string command = std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log + " 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+fs::path fresh_directory(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("fragmpm_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+const std::string disk_bounce = std::string(FRAGMPM_SOURCE_DIR) + "/scenes/disk-bounce.toml";
+
+}  // namespace
+
+TEST(RunCommand, WritesRunFileWithFramesSeriesAndXdmf) {
+  const fs::path dir = fresh_directory("run");
+  const std::string out = (dir / "bounce.h5").string();
+  ASSERT_EQ(run_fragmpm("run " + disk_bounce + " -o " + out + " --max-steps 400 -q", (dir / "log").string()), 0)
+      << read_text((dir / "log").string());
+  auto file = mpm::RunFile<2>::open_existing(out);
+  EXPECT_GE(file.frame_count(), 2);
+  const auto time = mpm::read_series(out, "time");
+  EXPECT_EQ(time.size(), 401u);  // the initial state and 400 steps
+  EXPECT_TRUE(fs::exists(dir / "bounce.xmf"));
+  EXPECT_NE(file.meta().scene_text.find("disk"), std::string::npos);
+  const std::string log = read_text((dir / "log").string());
+  EXPECT_NE(log.find("module thermal"), std::string::npos) << "the log says which modules run";
+}
+
+TEST(RunCommand, RefusesToOverwriteAnExistingRunFile) {
+  const fs::path dir = fresh_directory("overwrite");
+  const std::string out = (dir / "bounce.h5").string();
+  { std::ofstream(out) << "a user's file"; }
+  EXPECT_EQ(run_fragmpm("run " + disk_bounce + " -o " + out + " -q", (dir / "log").string()), 2);
+  EXPECT_EQ(read_text(out), "a user's file");
+  EXPECT_NE(read_text((dir / "log").string()).find(out), std::string::npos);
+}
+
+TEST(RunCommand, BadSceneExitsWithCode2AndNamesTheLine) {
+  const fs::path dir = fresh_directory("bad");
+  const std::string scene = (dir / "bad.toml").string();
+  std::string text = read_text(disk_bounce);
+  text.replace(text.find("E = \"10 MPa\""), 12, "E = \"10 m\"");
+  { std::ofstream(scene) << text; }
+  EXPECT_EQ(run_fragmpm("run " + scene + " -o " + (dir / "x.h5").string(), (dir / "log").string()), 2);
+  const std::string log = read_text((dir / "log").string());
+  EXPECT_NE(log.find("bad.toml:"), std::string::npos) << log;
+  EXPECT_NE(log.find("E"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "x.h5"));
+  EXPECT_EQ(run_fragmpm("run " + (dir / "missing.toml").string(), (dir / "log2").string()), 2);
+}
+
+TEST(RunCommand, NumericalFailureExitsWithCode3AndKeepsFrames) {
+  // A fixed Δt just below the CFL = 1 limit of the initial state is accepted, but the disk speeds up
+  // under a huge gravity until the step is unstable: the run must stop with a diagnostic.
+  const fs::path dir = fresh_directory("fail");
+  const std::string scene = (dir / "unstable.toml").string();
+  std::string text = read_text(disk_bounce);
+  text.replace(text.find("cfl = 0.4"), 9, "cfl = 1.0\ndt = \"8.6 us\"");
+  text.replace(text.find("\"-9.81 m/s2\""), 12, "\"-9.81e7 m/s2\"");
+  { std::ofstream(scene) << text; }
+  const std::string out = (dir / "unstable.h5").string();
+  EXPECT_EQ(run_fragmpm("run " + scene + " -o " + out + " -q", (dir / "log").string()), 3)
+      << read_text((dir / "log").string());
+  auto file = mpm::RunFile<2>::open_existing(out);
+  EXPECT_GE(file.frame_count(), 1);  // the initial frame at least
+  EXPECT_NE(read_text((dir / "log").string()).find("particle"), std::string::npos);
+}
+
+TEST(RunCommand, RestartReproducesUninterruptedRunBitForBit) {
+  const fs::path dir = fresh_directory("restart");
+  const std::string whole = (dir / "whole.h5").string(), parts = (dir / "parts.h5").string();
+  const std::string scene = (dir / "short.toml").string();
+  std::string text = read_text(disk_bounce);
+  text.replace(text.find("end_time = \"20 ms\""), 18, "end_time = \"4 ms\"");
+  { std::ofstream(scene) << text; }
+  ASSERT_EQ(run_fragmpm("run " + scene + " -o " + whole + " -q", (dir / "log1").string()), 0);
+  ASSERT_EQ(run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps 517", (dir / "log2").string()), 0);
+  ASSERT_EQ(run_fragmpm("run --restart " + parts + " -q", (dir / "log3").string()), 0)
+      << read_text((dir / "log3").string());
+  auto a = mpm::RunFile<2>::open_existing(whole);
+  auto b = mpm::RunFile<2>::open_existing(parts);
+  double time_a = 0, time_b = 0;
+  long long step_a = 0, step_b = 0;
+  const auto pa = a.read_frame(a.frame_count() - 1, &time_a, &step_a);
+  const auto pb = b.read_frame(b.frame_count() - 1, &time_b, &step_b);
+  EXPECT_EQ(step_a, step_b);
+  EXPECT_EQ(std::memcmp(&time_a, &time_b, sizeof(double)), 0);
+  ASSERT_EQ(pa.size(), pb.size());
+  EXPECT_EQ(std::memcmp(pa.x.data(), pb.x.data(), pa.size() * sizeof(pa.x[0])), 0);
+  EXPECT_EQ(std::memcmp(pa.v.data(), pb.v.data(), pa.size() * sizeof(pa.v[0])), 0);
+  EXPECT_EQ(std::memcmp(pa.stress.data(), pb.stress.data(), pa.size() * sizeof(pa.stress[0])), 0);
+  const auto ka = mpm::read_series(whole, "kinetic"), kb = mpm::read_series(parts, "kinetic");
+  ASSERT_EQ(ka.size(), kb.size());
+  EXPECT_EQ(std::memcmp(ka.data(), kb.data(), ka.size() * sizeof(double)), 0);
+}
