@@ -4,14 +4,27 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include "fragmpm/mpm/hdf5_io.hpp"
 
 namespace fragmpm::mpm::h5 {
 namespace {
 
+/// A path unique to this process (test runs may overlap), removed at exit.
 std::string temp_path(const std::string& name) {
-  const std::string path = ::testing::TempDir() + "fragmpm_hdf5_io_" + name + ".h5";
+  struct Cleanup {
+    std::vector<std::string> paths;
+    ~Cleanup() {
+      std::error_code ec;
+      for (const std::string& p : paths) std::filesystem::remove(p, ec);
+    }
+  };
+  static Cleanup cleanup;
+  const std::string path =
+      ::testing::TempDir() + "fragmpm_hdf5_io_" + std::to_string(getpid()) + "_" + name;
   std::filesystem::remove(path);
+  cleanup.paths.push_back(path);
   return path;
 }
 
@@ -26,7 +39,7 @@ void expect_round_trip(const Group& g, const std::string& name, const Dims& dims
 }
 
 TEST(Hdf5Io, DatasetsOfEveryTypeAndRank) {
-  const std::string path = temp_path("types");
+  const std::string path = temp_path("types.h5");
   const File file = File::create(path, false);
   const Group g = file.root().require_group("a/b/c");  // nested, created in one call
   expect_round_trip<double>(g, "d", {3, 4, 5});
@@ -60,7 +73,7 @@ TEST(Hdf5Io, DatasetsOfEveryTypeAndRank) {
 }
 
 TEST(Hdf5Io, ExtendibleDatasets) {
-  const std::string path = temp_path("extendible");
+  const std::string path = temp_path("extendible.h5");
   const File file = File::create(path, false);
   const Dataset ds = file.root().create_extendible<double>("series/force", {2}, 4);
   EXPECT_EQ(ds.dims(), (Dims{0, 2}));
@@ -80,7 +93,7 @@ TEST(Hdf5Io, ExtendibleDatasets) {
 }
 
 TEST(Hdf5Io, Attributes) {
-  const std::string path = temp_path("attributes");
+  const std::string path = temp_path("attributes.h5");
   {
     const File file = File::create(path, false);
     const Group root = file.root();
@@ -115,12 +128,12 @@ TEST(Hdf5Io, Attributes) {
 }
 
 TEST(Hdf5Io, FileErrorsNameThePath) {
-  const std::string path = temp_path("errors");
+  const std::string path = temp_path("errors.h5");
   { const File file = File::create(path, false); }
   EXPECT_THROW(File::create(path, false), RunFileError);
   EXPECT_NO_THROW(File::create(path, true));
   EXPECT_THROW(File::open(path + ".missing", false), RunFileError);
-  const std::string text_file = ::testing::TempDir() + "fragmpm_hdf5_io_not_hdf5.txt";
+  const std::string text_file = temp_path("not_hdf5.txt");
   { std::ofstream(text_file) << "hello"; }
   try {
     File::open(text_file, false);

@@ -83,7 +83,7 @@ TEST(RunCommand, NumericalFailureExitsWithCode3AndKeepsFrames) {
   const fs::path dir = fresh_directory("fail");
   const std::string scene = (dir / "unstable.toml").string();
   std::string text = read_text(disk_bounce);
-  text.replace(text.find("cfl = 0.4"), 9, "cfl = 1.0\ndt = \"8.6 us\"");
+  text.replace(text.find("cfl = 0.4"), 9, "cfl = 1.0\ndt = \"8 us\"");
   text.replace(text.find("\"-9.81 m/s2\""), 12, "\"-9.81e7 m/s2\"");
   { std::ofstream(scene) << text; }
   const std::string out = (dir / "unstable.h5").string();

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <opencv2/core.hpp>
+
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/pipeline/segment.hpp"
 #include "fragmpm/pipeline/segment_file.hpp"
