@@ -207,7 +207,8 @@ int execute(const SegmentArguments& a) {
                  s.table.grains.size(), static_cast<long long>(s.table.dropped_small), a.min_area,
                  a.drop_border ? fmt::format(", {} at the border", s.table.dropped_border).c_str() : "",
                  1e6 * d[d.size() / 2],
-                 std::isnan(s.threshold_level) ? "" : fmt::format(", threshold at grey level {:.5g}", s.threshold_level).c_str(),
+                 std::isnan(s.threshold_level) ? ""
+                 : fmt::format(", threshold at {} level {:.5g}", a.gaps > 0 ? "gap-image" : "grey", s.threshold_level).c_str(),
                  particles.size(), surface, 1e6 * sampling.cell_size, cell_size ? "" : " (auto: median grain / 8)",
                  sampling.particles_per_cell, a.output.c_str());
     if (!a.preview.empty()) std::fprintf(stderr, "  preview -> %s\n", a.preview.c_str());

@@ -119,17 +119,29 @@ cv::Mat draw_preview(const Segmentation& s) {
   for (const Grain& g : s.table.grains) d.push_back(g.shape.equivalent_diameter);
   std::sort(d.begin(), d.end());
   const double median_um = d.empty() ? 0.0 : 1e6 * d[d.size() / 2];
-  std::string caption = fmt::format("{} grains, median equivalent diameter {:.4g} um, pixel {:.4g} um",
-                                    s.table.grains.size(), median_um, 1e6 * s.pixel_size);
+  std::vector<std::string> lines{fmt::format("{} grains, median equivalent diameter {:.4g} um, pixel {:.4g} um",
+                                             s.table.grains.size(), median_um, 1e6 * s.pixel_size)};
   if (s.table.dropped_small + s.table.dropped_border > 0)
-    caption += fmt::format("; red: dropped ({} small, {} at border)", s.table.dropped_small,
-                           s.table.dropped_border);
-  const double caption_scale = std::clamp(cols / 1400.0, 0.35, 1.5);
-  const int strip = static_cast<int>(std::lround(36 * caption_scale)) + 8;
+    lines.push_back(fmt::format("red: dropped grains ({} under the minimum area, {} cut by the border)",
+                                s.table.dropped_small, s.table.dropped_border));
+  // Text scaled with the image, shrunk until the widest line fits.
+  double scale = std::clamp(cols / 1400.0, 0.3, 1.5);
+  auto widest = [&](double sc) {
+    int w = 0, baseline = 0;
+    for (const std::string& l : lines)
+      w = std::max(w, cv::getTextSize(l, cv::FONT_HERSHEY_SIMPLEX, sc, 1, &baseline).width);
+    return w;
+  };
+  while (scale > 0.2 && widest(scale) > cols - 12) scale *= 0.9;
+  const int line_height = static_cast<int>(std::lround(32 * scale)) + 6;
+  const int strip = line_height * static_cast<int>(lines.size()) + 6;
   cv::Mat out(rows + strip, cols, CV_8UC3, cv::Scalar(32, 32, 32));
   canvas.copyTo(out(cv::Rect(0, 0, cols, rows)));
-  cv::putText(out, caption, cv::Point(6, rows + strip - static_cast<int>(std::lround(10 * caption_scale)) - 4),
-              cv::FONT_HERSHEY_SIMPLEX, caption_scale, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    cv::putText(out, lines[k],
+                cv::Point(6, rows + static_cast<int>(k + 1) * line_height - static_cast<int>(std::lround(6 * scale))),
+                cv::FONT_HERSHEY_SIMPLEX, scale, k == 0 ? cv::Scalar(255, 255, 255) : cv::Scalar(120, 120, 255), 1,
+                cv::LINE_AA);
   return out;
 }
 

@@ -1,13 +1,16 @@
-// Grain files (DESIGN §5): write, read back, refuse to overwrite, reject foreign files.
+// Grain files (DESIGN §5): write, read back, refuse to overwrite, reject foreign files; grains as
+// scene bodies from an image or a grain file.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/pipeline/segment.hpp"
+#include "fragmpm/pipeline/segment_bodies.hpp"
 #include "fragmpm/pipeline/segment_file.hpp"
 #include "fragmpm/pipeline/segment_particles.hpp"
 #include "fragmpm/pipeline/segment_synthetic.hpp"
@@ -86,4 +89,31 @@ TEST(SegmentFile, ForeignFilesAreRejected) {
   } catch (const fragmpm::mpm::RunFileError& e) {
     EXPECT_NE(std::string(e.what()).find("not a grain file"), std::string::npos) << e.what();
   }
+}
+
+TEST(SegmentFile, BodiesFromImageAndFromGrainFileAgree) {
+  // The scene's two routes to grains give the same particles at the scene's cell size.
+  const fs::path image = temp_file("pairs_for_bodies.png");
+  cv::imwrite(image.string(), fp::synthetic_touching_pairs().image);
+  fp::SegmentOptions o = fp::testing::micrometre_options(image.string());
+  const fp::ParticleSampling scene{6e-6, 2};
+  const fp::GrainBodies direct = fp::grain_bodies_from_image(o, scene, {2650.0});
+  EXPECT_EQ(direct.grains.size(), 12u);
+  EXPECT_EQ(direct.body_names.size(), 12u);
+  EXPECT_EQ(direct.body_names[0], "grain 1");
+  EXPECT_DOUBLE_EQ(direct.width, 640e-6);
+
+  const fp::Segmentation s = fp::segment(o);
+  const auto coarse = fp::particles_from_labels(s.table.labels, s.pixel_size, {10e-6, 1},
+                                                fp::material_of_labels(s.table), {2650.0});
+  const fs::path file = temp_file("pairs_for_bodies.h5");
+  fp::write_grain_file(file.string(), s, coarse, {{10e-6, 1}, {2650.0}, ""}, true);
+  const fp::GrainBodies from_file = fp::grain_bodies_from_file(file.string(), scene, {2650.0});
+  ASSERT_EQ(from_file.particles.size(), direct.particles.size());
+  for (std::size_t k = 0; k < direct.particles.size(); ++k) {
+    EXPECT_EQ(from_file.particles.x[k], direct.particles.x[k]);
+    EXPECT_EQ(from_file.particles.body[k], direct.particles.body[k]);
+    EXPECT_EQ(from_file.particles.surface[k], direct.particles.surface[k]);
+  }
+  EXPECT_THROW(fp::grain_bodies_from_file(file.string(), scene, {}), fp::SegmentInputError);
 }

@@ -25,8 +25,6 @@ double median_diameter_px(const fp::Segmentation& s) {
 
 const std::string kImages = std::string(FRAGMPM_SOURCE_DIR) + "/images/";
 
-}  // namespace
-
 fp::SegmentOptions torrey_pines_recipe() {
   fp::SegmentOptions o;
   o.image_path = kImages + "torrey_pines_beach_image.jpg";
@@ -40,6 +38,8 @@ fp::SegmentOptions torrey_pines_recipe() {
   o.grow = 6.0;
   return o;
 }
+
+}  // namespace
 
 TEST(SegmentTorreyPines, CountAndMedianSizeWithinTenPercentOfTheMask) {
   fp::SegmentOptions truth_options;

@@ -29,8 +29,9 @@ struct ModuleDecision {
 template <int D>
 std::vector<ModuleDecision> plan_modules(const Problem<D>& problem);
 
-/// Largest stable explicit Δt for the current particle state: C_cfl h / max_p(c_p + |v_p|) with
-/// c_p = sqrt((K + 4G/3) / ρ_p), ρ_p = ρ0 / J.  [s]
+/// Largest stable explicit Δt for the current particle state: C_cfl h / (√D max_p(c_p + |v_p|))
+/// with c_p = sqrt((K + 4G/3) / ρ_p), ρ_p = ρ0 / J. The √D is the multi-dimensional CFL factor of
+/// multilinear hats with a lumped mass (DESIGN §4 gives the 1D form).  [s]
 template <int D>
 double stable_time_step(const Problem<D>& problem, const Particles<D>& particles, double cfl);
 
