@@ -13,6 +13,7 @@
 #include "fragmpm/mpm/run_file.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/scene_shapes.hpp"
+#include "scene_grains.hpp"
 #include "scene_toml.hpp"
 #include "scene_validate.hpp"
 
@@ -165,12 +166,15 @@ Shape read_shape(const Section& b) {
   return s;
 }
 
+int read_body_material(const Section& b, const NameRegistry& materials) {
+  const int m = materials.index(b.string("material"));
+  if (m < 0) b.expected("material", "the name of a material defined in [[materials]] (" + quoted_list(materials.names()) + ")");
+  return m;
+}
+
 BodyEntry read_body(const Section& b, const NameRegistry& materials) {
   BodyEntry body{b.name("name"), {}, b};
-  const std::string material = b.string("material");
-  const int m = materials.index(material);
-  if (m < 0) b.expected("material", "the name of a material defined in [[materials]] (" + quoted_list(materials.names()) + ")");
-  body.sample.material = m;
+  body.sample.material = read_body_material(b, materials);
   body.sample.shape = read_shape(b);
   body.sample.velocity = b.optional_vector("velocity", QK::velocity).value_or(Vec2::Zero());
   body.sample.angular_velocity = b.optional_quantity("angular_velocity", QK::angular_velocity).value_or(0.0);
@@ -228,6 +232,27 @@ mpm::WallSpec<2> read_wall(const Section& w) {
   }
   if (auto h = w.optional_table("velocity")) wall.velocity = read_history(*h);
   return wall;
+}
+
+/// Appends `src` to `dst`, shifting body ids by `first_body`.
+void append_particles(mpm::Particles<2>& dst, const mpm::Particles<2>& src, std::int32_t first_body) {
+  auto cat = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
+  cat(dst.x, src.x);
+  cat(dst.v, src.v);
+  cat(dst.F, src.F);
+  cat(dst.volume0, src.volume0);
+  cat(dst.mass, src.mass);
+  cat(dst.domain, src.domain);
+  cat(dst.stress, src.stress);
+  cat(dst.damage, src.damage);
+  cat(dst.damage_history, src.damage_history);
+  cat(dst.surface, src.surface);
+  const std::size_t at = dst.body.size();
+  cat(dst.body, src.body);
+  for (std::size_t p = at; p < dst.body.size(); ++p) dst.body[p] += first_body;
+  cat(dst.material, src.material);
+  cat(dst.strength, src.strength);
+  cat(dst.temperature, src.temperature);
 }
 
 bool never_moves(const mpm::VelocityHistory<2>& v) {
@@ -329,13 +354,44 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
     material_names.add(m, problem.materials.back().name);
   }
 
-  NameRegistry body_names("body");
+  // Shape bodies and grain sources (image or grain file) in file order; a grain source gives one
+  // body per grain, so body ids follow the file order with each source's grains in label order.
+  NameRegistry entry_names("body");
   std::vector<BodyEntry> bodies;
+  std::vector<GrainEntry> grain_entries;
+  std::vector<std::pair<bool, std::size_t>> entry_order;  // {is grain source, index in its list}
   for (const Section& b : top.array_of_tables("bodies", true)) {
-    bodies.push_back(read_body(b, material_names));
-    body_names.add(b, bodies.back().name);
+    if (is_grain_source(b)) {
+      const int m = read_body_material(b, material_names);
+      entry_names.add(b, b.name("name"));
+      grain_entries.push_back(read_grain_entry(b, path, m, problem.materials[static_cast<std::size_t>(m)],
+                                               problem.grid, per_cell));
+      entry_order.emplace_back(true, grain_entries.size() - 1);
+    } else {
+      bodies.push_back(read_body(b, material_names));
+      entry_names.add(b, bodies.back().name);
+      entry_order.emplace_back(false, bodies.size() - 1);
+    }
   }
-  problem.body_names = body_names.names();
+  std::vector<std::int32_t> shape_body_id(bodies.size()), grain_first_id(grain_entries.size());
+  {
+    std::map<std::string, std::string> owner;  // body name -> entry name, for clashes with grain names
+    auto add_name = [&](const std::string& name, const Section& entry) {
+      if (!owner.emplace(name, entry.path()).second)
+        entry.fail("name", "expected body names not used before, got body '" + name + "' also defined by " +
+                               owner[name]);
+      problem.body_names.push_back(name);
+    };
+    for (const auto& [grain, i] : entry_order) {
+      if (grain) {
+        grain_first_id[i] = static_cast<std::int32_t>(problem.body_names.size());
+        for (const std::string& n : grain_entries[i].body_names) add_name(n, grain_entries[i].section);
+      } else {
+        shape_body_id[i] = static_cast<std::int32_t>(problem.body_names.size());
+        add_name(bodies[i].name, bodies[i].section);
+      }
+    }
+  }
 
   NameRegistry wall_names("wall");
   for (const Section& w : top.array_of_tables("walls", false)) {
@@ -355,6 +411,9 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   SampleResult sampled = sample_bodies(samples, problem.materials, problem.grid, per_cell);
   check_sampling(bodies, sampled, problem.grid.cell_size / per_cell);
   problem.particles = std::move(sampled.particles);
+  for (auto& id : problem.particles.body) id = shape_body_id[static_cast<std::size_t>(id)];
+  for (std::size_t g = 0; g < grain_entries.size(); ++g)
+    append_particles(problem.particles, grain_entries[g].bodies.particles, grain_first_id[g]);
 
   if (time) check_fixed_dt(problem, *time);
   return problem;

@@ -78,12 +78,12 @@ TEST(RunCommand, BadSceneExitsWithCode2AndNamesTheLine) {
 }
 
 TEST(RunCommand, NumericalFailureExitsWithCode3AndKeepsFrames) {
-  // A fixed Δt just below the CFL = 1 limit of the initial state is accepted, but the disk speeds up
+  // A fixed Δt just below the CFL = 1 limit of the initial state (5.8 μs) is accepted, but the disk speeds up
   // under a huge gravity until the step is unstable: the run must stop with a diagnostic.
   const fs::path dir = fresh_directory("fail");
   const std::string scene = (dir / "unstable.toml").string();
   std::string text = read_text(disk_bounce);
-  text.replace(text.find("cfl = 0.4"), 9, "cfl = 1.0\ndt = \"8 us\"");
+  text.replace(text.find("cfl = 0.4"), 9, "cfl = 1.0\ndt = \"5.5 us\"");
   text.replace(text.find("\"-9.81 m/s2\""), 12, "\"-9.81e7 m/s2\"");
   { std::ofstream(scene) << text; }
   const std::string out = (dir / "unstable.h5").string();
