@@ -342,21 +342,7 @@ int RunFile<D>::write_frame(long long step, double time, const Particles<D>& par
   g.set_attribute("time", time);
   g.set_attribute("step", static_cast<std::int64_t>(step));
 
-  typename Impl::Frame frame{index, step, time, n, {}};
-  for (const std::string& field : known) {
-    // x is the geometry of every frame; temperature exists only when the thermal module runs.
-    if (field != "x" && !wanted.empty() && !wanted.count(field)) continue;
-    if (field == "temperature" && particles.temperature.empty()) continue;
-    const std::size_t size = field_size(particles, field);
-    if (size != n)
-      throw RunFileError(g.describe("particle array for '" + field + "' has " + std::to_string(size) +
-                                    " entries, expected " + std::to_string(n)));
-    const h5::Dataset ds = write_field(g, particles, field);
-    const FieldInfo info = field_info<D>(field);
-    ds.set_attribute("units", info.units);
-    ds.set_attribute("description", info.description);
-    frame.fields.push_back(field);
-  }
+  typename Impl::Frame frame{index, step, time, n, write_particle_datasets<D>(g, particles, fields)};
   impl_->frames.push_back(std::move(frame));
   impl_->file.flush();
   impl_->rewrite_xdmf();
@@ -547,9 +533,10 @@ std::vector<double> read_series(const std::string& path, const std::string& name
 }
 
 template <int D>
-void write_particle_datasets(const h5::Group& g, const Particles<D>& particles,
-                             const std::vector<std::string>& fields) {
+std::vector<std::string> write_particle_datasets(const h5::Group& g, const Particles<D>& particles,
+                                                 const std::vector<std::string>& fields) {
   const std::size_t n = particles.size();
+  std::vector<std::string> written;
   for (const std::string& field : all_frame_fields()) {
     if (field != "x" && !fields.empty() && std::find(fields.begin(), fields.end(), field) == fields.end())
       continue;
@@ -562,11 +549,13 @@ void write_particle_datasets(const h5::Group& g, const Particles<D>& particles,
     const FieldInfo info = field_info<D>(field);
     ds.set_attribute("units", info.units);
     ds.set_attribute("description", info.description);
+    written.push_back(field);
   }
+  return written;
 }
 
-template void write_particle_datasets<2>(const h5::Group&, const Particles<2>&, const std::vector<std::string>&);
-template void write_particle_datasets<3>(const h5::Group&, const Particles<3>&, const std::vector<std::string>&);
+template std::vector<std::string> write_particle_datasets<2>(const h5::Group&, const Particles<2>&, const std::vector<std::string>&);
+template std::vector<std::string> write_particle_datasets<3>(const h5::Group&, const Particles<3>&, const std::vector<std::string>&);
 template Particles<2> read_particle_datasets<2>(const h5::Group&);
 template Particles<3> read_particle_datasets<3>(const h5::Group&);
 

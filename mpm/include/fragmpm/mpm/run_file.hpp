@@ -85,8 +85,9 @@ std::vector<double> read_series(const std::string& path, const std::string& name
 
 /// Writes the frame datasets of `particles` (DESIGN §5 layout and units attributes; `fields` empty =
 /// all, x always) into `group`. Used for run frames and for the /particles group of grain files.
+/// Returns the names of the datasets written.
 template <int D>
-void write_particle_datasets(const h5::Group& group, const Particles<D>& particles,
+std::vector<std::string> write_particle_datasets(const h5::Group& group, const Particles<D>& particles,
                              const std::vector<std::string>& fields);
 /// Reads the frame datasets of `group`; fields not stored keep the defaults of Particles::resize.
 template <int D>
