@@ -49,11 +49,6 @@ struct BenchCase {
   int steps;
 };
 
-std::string toml_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
 
 mpm::Problem<2> elastic_block(long long target_particles) {
   // 2×2 particles per cell over a 100 mm square block: N = 4 (0.1/h)².

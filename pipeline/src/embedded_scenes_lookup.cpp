@@ -1,3 +1,4 @@
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 #include <toml++/toml.h>
@@ -11,6 +12,12 @@ const std::string& embedded_scene(const std::string& name) {
   const auto found = scenes.find(name);
   if (found == scenes.end()) throw std::out_of_range("no embedded scene '" + name + "'");
   return found->second;
+}
+
+std::string toml_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
 }
 
 std::string with_overrides(const std::string& text,

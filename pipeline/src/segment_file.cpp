@@ -9,12 +9,7 @@
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
-#ifndef FRAGMPM_VERSION
-#define FRAGMPM_VERSION "unknown"
-#endif
-#ifndef FRAGMPM_GIT_HASH
-#define FRAGMPM_GIT_HASH "unknown"
-#endif
+// FRAGMPM_VERSION and FRAGMPM_GIT_HASH come from the fragmpm_mpm target (mpm/CMakeLists.txt).
 
 namespace fragmpm::pipeline {
 

@@ -18,11 +18,6 @@ namespace fragmpm::pipeline {
 
 namespace {
 
-std::string toml_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
 
 constexpr double bar_length = 0.025;  // [m], as in scenes/verify/bar.toml
 constexpr double v0 = 1e-3;           // [m/s]: strain amplitude v0/c ≈ 3e-6, small strain

@@ -13,6 +13,9 @@ const std::string& embedded_scene(const std::string& name);
 
 /// Returns `text` with some keys replaced, e.g. {"grid.cell_size", "\"0.5 mm\""}: each value is a
 /// TOML expression. Used to run one scene file at several resolutions.
+/// A double as a TOML number that reads back bit for bit (for override values).
+std::string toml_number(double value);
+
 std::string with_overrides(const std::string& text,
                            const std::map<std::string, std::string>& overrides);
 
