@@ -343,7 +343,8 @@ struct Solver<D>::Impl {
             const double slip = tangential.norm();
             if (slip > 0.0) {
               // Coulomb: the tangential velocity change is limited by μ times the normal one.
-              const double fraction = std::min(1.0, wall.friction * (-approach) / slip);
+              const double fraction = std::min(
+                  1.0, std::get<CoulombFriction>(wall.friction).coefficient * (-approach) / slip);
               change -= fraction * tangential;
               friction += m * fraction * slip * (1.0 - fraction) * slip;
             }

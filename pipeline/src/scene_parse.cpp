@@ -228,7 +228,7 @@ mpm::WallSpec<2> read_wall(const Section& w) {
     if (wall.kind != mpm::WallKind::contact)
       w.fail("friction", "expected no friction for kind = \"" + kind + "\" (friction applies to contact walls only)");
     if (!(*mu >= 0.0)) w.expected("friction", "a Coulomb friction coefficient >= 0");
-    wall.friction = *mu;
+    wall.friction = mpm::CoulombFriction{*mu};
   }
   if (auto h = w.optional_table("velocity")) wall.velocity = read_history(*h);
   return wall;

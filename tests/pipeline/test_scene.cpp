@@ -119,7 +119,7 @@ TEST(Scene, BoxGivesTheExactLatticeCountAndUnitsAreSI) {
   EXPECT_DOUBLE_EQ(p.walls[0].normal.y(), 1.0);  // [0, 2] normalised
   EXPECT_DOUBLE_EQ(p.walls[0].point.y(), 1e-3);
   EXPECT_EQ(p.walls[0].kind, mpm::WallKind::contact);
-  EXPECT_DOUBLE_EQ(p.walls[0].friction, 0.2);
+  EXPECT_DOUBLE_EQ(std::get<mpm::CoulombFriction>(p.walls[0].friction).coefficient, 0.2);
   EXPECT_EQ(p.walls[0].velocity.kind, mpm::HistoryKind::constant);
 
   const double s = 2.5e-4;
@@ -379,7 +379,7 @@ TEST(Scene, ShippedDiskBounceLoads) {
   EXPECT_DOUBLE_EQ(p.gravity.y(), -9.81);
   ASSERT_FALSE(p.walls.empty());
   EXPECT_EQ(p.walls[0].name, "floor");
-  EXPECT_DOUBLE_EQ(p.walls[0].friction, 0.3);
+  EXPECT_DOUBLE_EQ(std::get<mpm::CoulombFriction>(p.walls[0].friction).coefficient, 0.3);
   EXPECT_DOUBLE_EQ(p.output.interval, 1e-3);
 }
 

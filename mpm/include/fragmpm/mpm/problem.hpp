@@ -3,8 +3,11 @@
 // The scene-file parser (pipeline/) fills this; the core never sees TOML or units.
 #include <limits>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "fragmpm/mpm/damage_law.hpp"
+#include "fragmpm/mpm/friction_law.hpp"
 #include "fragmpm/mpm/particles.hpp"
 #include "fragmpm/mpm/velocity_history.hpp"
 
@@ -18,6 +21,13 @@ struct MaterialSpec {
   double bulk_modulus = 0.0;   ///< K [Pa]
   double shear_modulus = 0.0;  ///< G [Pa]
   double density = 0.0;        ///< ρ0 [kg/m^3]
+  DamageLaw damage = NoDamage{};
+  Degradation degradation = Degradation::tensile_spectral;
+  double strength = 0.0;       ///< uniform σ_f [Pa] (Particles::strength holds the per-particle value)
+  bool weibull = false;        ///< strengths drawn from `weibull_strength` (001 eq. 25)
+  WeibullStrength weibull_strength;
+
+  bool damages() const { return !std::holds_alternative<NoDamage>(damage); }
 };
 
 /// contact: one-sided, frictional (Coulomb μ = friction); roller: bilateral normal constraint, free
@@ -31,8 +41,31 @@ struct WallSpec {
   Vec<D> point = Vec<D>::Zero();   ///< [m]
   Vec<D> normal = Vec<D>::Zero();  ///< unit
   WallKind kind = WallKind::contact;
-  double friction = 0.0;           ///< Coulomb coefficient μ
+  FrictionLaw friction = CoulombFriction{};  ///< contact walls only
   VelocityHistory<D> velocity;
+};
+
+/// Damage-field-gradient partitioning and contact between the two fields of a node (DESIGN §4;
+/// 001 §2.2-2.4, Alg. 1-3; 000 eq. 67-77).
+enum class Partitioning {
+  automatic,  ///< on when the scene has more than one body or a damaging material
+  off,        ///< one velocity field everywhere (the "single-field" comparison runs)
+};
+
+template <int D>
+struct ContactSpec {
+  Partitioning partitioning = Partitioning::automatic;
+  FrictionLaw friction = CoulombFriction{};  ///< between the two fields of a separable node
+  /// Separable when the largest d̂ = max(s, d) of a particle mapping to the node reaches
+  /// `critical_damage` (001 §2.3: "at least one particle fully damaged") and the mass-weighted
+  /// mean d̂ of each field exceeds `minimum_damage` (001 eq. 21, Alg. 3; 000 eq. 70-71).
+  double critical_damage = 1.0;  ///< D_cr
+  double minimum_damage = 0.25;  ///< D_min (001 Table III)
+  /// Neighbour lists of the damage field are rebuilt once a particle has moved this fraction of
+  /// the kernel radius since the last build (001 §2.5).
+  double rebuild_fraction = 0.25;
+  bool position_gap_test = false;  ///< also require overlapping extrapolated positions (004 eq. 8)
+  Vec<D> normal = Vec<D>::Zero();  ///< prescribed contact normal of field 0; zero = from mass gradients (000 eq. 74)
 };
 
 template <int D>
@@ -70,6 +103,7 @@ struct Problem {
   Vec<D> gravity = Vec<D>::Zero();  ///< [m/s^2]
   std::vector<MaterialSpec> materials;
   std::vector<WallSpec<D>> walls;
+  ContactSpec<D> contact;
   std::vector<std::string> body_names;  ///< index = body id
   Particles<D> particles;
   std::string scene_path;   ///< where it came from (for messages and /meta)

@@ -1,0 +1,47 @@
+#pragma once
+// Friction laws for the momentum-exchange contact of 004 §2.6: each law gives the sliding traction
+// S_slide that the contact can carry, from the normal momentum change d_n, the stick tangential
+// momentum change d_t, the reduced mass and the contact area. Laws are plain structs held in a
+// std::variant, so the per-node dispatch is a jump table, not a virtual call (DESIGN §4).
+#include <variant>
+
+namespace fragmpm::mpm {
+
+/// S = μ N (004 §2.7, eq. 20).
+struct CoulombFriction {
+  double coefficient = 0.0;  ///< μ
+};
+
+/// μ = μ₀ + k |Δv′| with Δv′ the slip velocity left after the step (004 §2.8, eq. 22-23).
+struct VelocityDependentFriction {
+  double coefficient = 0.0;  ///< μ₀
+  double slope = 0.0;        ///< k [s/m]
+};
+
+/// S = S_a + μ N; separated surfaces stay stuck until the elliptical criterion of eq. 25 breaks them
+/// (004 §2.9, eq. 24-25). Needs the contact area (eq. 11).
+struct AdhesiveFriction {
+  double coefficient = 0.0;       ///< μ
+  double shear_strength = 0.0;    ///< S_a [Pa]
+  double tensile_strength = 0.0;  ///< N_a [Pa]; 0 = no tensile adhesion
+};
+
+/// Smooth static → dynamic transition μ(|Δv′|) = (μ_s v½ + μ_d |Δv′|) / (v½ + |Δv′|), solved for
+/// the final slip velocity (004 eq. 42-43).
+struct SmoothStaticDynamicFriction {
+  double static_coefficient = 0.0;   ///< μ_s
+  double dynamic_coefficient = 0.0;  ///< μ_d
+  double half_velocity = 0.0;        ///< v½ [m/s]
+};
+
+/// μ = μ₀ ⟨1 − (θ − θ_ref)/(θ_dam − θ_ref)⟩ (000 eq. 15): friction vanishes at θ_dam.
+struct ThermalSofteningFriction {
+  double coefficient = 0.0;            ///< μ₀ at θ_ref
+  double reference_temperature = 0.0;  ///< θ_ref [K]
+  double damage_temperature = 0.0;     ///< θ_dam [K]
+};
+
+using FrictionLaw = std::variant<CoulombFriction, VelocityDependentFriction, AdhesiveFriction,
+                                 SmoothStaticDynamicFriction, ThermalSofteningFriction>;
+
+}  // namespace fragmpm::mpm
