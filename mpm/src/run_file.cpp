@@ -109,6 +109,8 @@ const std::vector<ScalarColumn<D>>& scalar_columns() {
        [](const R& r) { return r.totals.wall_work; }},
       {"gravity_work", "work of gravity (cumulative)", true, "",
        [](const R& r) { return r.totals.gravity_work; }},
+      {"load_work", "work of the traction loads (cumulative)", true, "",
+       [](const R& r) { return r.totals.load_work; }},
       {"balance_error", "energy balance error, see series.hpp", true, "",
        [](const R& r) { return r.balance_error; }},
   };
@@ -380,6 +382,7 @@ const std::vector<std::pair<const char*, double EnergyAccumulators::*>>& accumul
   static const std::vector<std::pair<const char*, double EnergyAccumulators::*>> fields{
       {"wall_work", &EnergyAccumulators::wall_work},
       {"gravity_work", &EnergyAccumulators::gravity_work},
+      {"load_work", &EnergyAccumulators::load_work},
       {"friction_work", &EnergyAccumulators::friction_work},
       {"dissipated", &EnergyAccumulators::dissipated},
       {"initial_energy", &EnergyAccumulators::initial_energy},

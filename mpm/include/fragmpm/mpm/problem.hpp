@@ -1,6 +1,7 @@
 #pragma once
 // The compiled scene: everything the solver needs, already in SI units and validated.
 // The scene-file parser (pipeline/) fills this; the core never sees TOML or units.
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <variant>
@@ -43,6 +44,29 @@ struct WallSpec {
   WallKind kind = WallKind::contact;
   FrictionLaw friction = CoulombFriction{};  ///< contact walls only
   VelocityHistory<D> velocity;
+};
+
+/// A surface traction on part of a body's boundary, applied as particle forces f_p = t(τ) a_p with
+/// a_p the boundary length (2D) or area (3D) the particle carries. t is piecewise linear in time
+/// through (times, tractions) and constant outside them.
+template <int D>
+struct TractionLoad {
+  std::string name;
+  std::vector<std::int64_t> particles;  ///< loaded particles
+  std::vector<double> boundary_measure; ///< a_p per loaded particle [m in 2D, m² in 3D]
+  std::vector<double> times;            ///< [s], increasing
+  std::vector<Vec<D>> tractions;        ///< [Pa] at `times`
+
+  Vec<D> traction(double t) const {
+    if (times.empty()) return Vec<D>::Zero();
+    if (t <= times.front()) return tractions.front();
+    for (std::size_t k = 1; k < times.size(); ++k)
+      if (t <= times[k]) {
+        const double s = (t - times[k - 1]) / (times[k] - times[k - 1]);
+        return (1.0 - s) * tractions[k - 1] + s * tractions[k];
+      }
+    return tractions.back();
+  }
 };
 
 /// Damage-field-gradient partitioning and contact between the two fields of a node (DESIGN §4;
@@ -104,6 +128,7 @@ struct Problem {
   std::vector<MaterialSpec> materials;
   std::vector<WallSpec<D>> walls;
   ContactSpec<D> contact;
+  std::vector<TractionLoad<D>> loads;
   std::vector<std::string> body_names;  ///< index = body id
   Particles<D> particles;
   std::string scene_path;   ///< where it came from (for messages and /meta)

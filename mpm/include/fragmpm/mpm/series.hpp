@@ -11,6 +11,7 @@ namespace fragmpm::mpm {
 struct EnergyAccumulators {
   double wall_work = 0.0;      ///< work done by walls on the material [J per unit thickness in 2D]
   double gravity_work = 0.0;   ///< work done by gravity [J]
+  double load_work = 0.0;      ///< work done by traction loads [J]
   double friction_work = 0.0;  ///< dissipated by friction at walls and contacts [J]
   double dissipated = 0.0;     ///< dissipated by damage [J]
   double initial_energy = 0.0; ///< kinetic + strain at step 0 [J]
