@@ -4,10 +4,14 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
+#include "fragmpm/mpm/contact_exchange.hpp"
+#include "fragmpm/mpm/damage_field.hpp"
+#include "fragmpm/mpm/damage_law.hpp"
 #include "fragmpm/mpm/grid_index.hpp"
 #include "fragmpm/mpm/neo_hookean.hpp"
 #include "fragmpm/mpm/shape_functions.hpp"
@@ -46,6 +50,16 @@ constexpr double negligible_node_mass_fraction = 1e-10;
 }  // namespace
 
 template <int D>
+bool partitioning_active(const Problem<D>& problem) {
+  if (problem.contact.partitioning == Partitioning::off) return false;
+  if (problem.contact.partitioning == Partitioning::bodies) return true;
+  if (problem.body_names.size() > 1) return true;
+  for (const auto& m : problem.materials)
+    if (m.damages()) return true;
+  return false;
+}
+
+template <int D>
 std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   std::vector<ModuleDecision> plan;
   const char* shape = problem.grid.shape_function == ShapeFunctionKind::cpdi     ? "CPDI"
@@ -56,15 +70,36 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   plan.push_back({"walls", !problem.walls.empty(),
                   problem.walls.empty() ? "no walls in the scene"
                                         : std::to_string(problem.walls.size()) + " rigid wall(s)"});
+  plan.push_back({"loads", !problem.loads.empty(),
+                  problem.loads.empty() ? "no traction loads"
+                                        : std::to_string(problem.loads.size()) + " traction load(s)"});
   plan.push_back({"gravity", problem.gravity.squaredNorm() > 0.0,
                   problem.gravity.squaredNorm() > 0.0 ? "gravity set in [physics]" : "no gravity"});
+  std::vector<std::string> damaging;
+  for (const auto& m : problem.materials)
+    if (m.damages()) damaging.push_back(m.name);
+  std::string damage_reason = "no damage law in the scene";
+  if (!damaging.empty()) {
+    damage_reason = "damage law on material(s)";
+    for (const auto& name : damaging) damage_reason += " '" + name + "'";
+  }
+  plan.push_back({"damage", !damaging.empty(), damage_reason});
   const std::size_t bodies = problem.body_names.size();
-  plan.push_back({"partitioning", false,
-                  bodies > 1 ? std::to_string(bodies) +
-                                   " bodies share one velocity field (multi-field contact is not "
-                                   "part of this build yet)"
-                             : "one body and no damage: one velocity field, no neighbour search"});
-  plan.push_back({"damage", false, "no damage law in the scene"});
+  std::string partition_reason;
+  if (problem.contact.partitioning == Partitioning::bodies)
+    partition_reason = "partitioning = \"bodies\" in [contact]: body 0 and the other bodies are "
+                       "two always-separable fields (multimaterial contact, 004 §2.2)";
+  else if (problem.contact.partitioning == Partitioning::off)
+    partition_reason = "partitioning = \"off\" in [contact]: one velocity field (single-field MPM)";
+  else if (partitioning_active(problem))
+    partition_reason =
+        "damage-field-gradient partitioning with two fields per node (" +
+        (bodies > 1 ? std::to_string(bodies) + " bodies, surface flags make them separable"
+                    : std::string("damage can open cracks")) +
+        "); kernel neighbour search radius = cell diagonal";
+  else
+    partition_reason = "one body and no damage: one velocity field, no neighbour search";
+  plan.push_back({"partitioning", partitioning_active(problem), partition_reason});
   plan.push_back({"thermal", false, "no thermal data and no heat sources: no thermal arrays"});
   return plan;
 }
@@ -99,22 +134,56 @@ struct Solver<D>::Impl {
   SeriesRow<D> row;
   double next_dt_limit = 0.0;  ///< CFL limit from the state after the last step (C_cfl included)
   double negligible_mass = 0.0;
+  double characteristic_length = 0.0;  ///< l_ch = cell diagonal (000 eq. 20; 001 §2.7) [m]
 
   GridIndex<D> grid;
-  std::vector<double> node_mass;
-  std::vector<Vec<D>> node_momentum, node_force, node_velocity_lumped, node_velocity;
+  /// Per node and field (field 1 exists only with partitioning): mass, momentum, force, and the
+  /// velocities before (lumped) and after the grid update.
+  std::array<std::vector<double>, 2> node_mass;
+  std::array<std::vector<Vec<D>>, 2> node_momentum, node_force, node_velocity_lumped, node_velocity;
   // Race-free, thread-count-independent scatter: particles are binned into strips along direction 0
   // that are wider than twice any stencil's reach, so strips of equal parity never share a node.
   // Even strips scatter in parallel, then odd ones; within a strip particles go in index order, so
   // every node sums its contributions in the same order whatever the number of threads.
   std::int64_t strip_width = 3;         ///< cells per strip
   double largest_half_extent = 0.0;     ///< largest stencil half-extent along direction 0 [cells]
-  std::vector<std::int64_t> strip_start, strip_order, strip_of;
+  std::vector<std::int64_t> strip_start, strip_order, strip_of, strip_cursor;
   int thread_slots = 1;
   IVec<D> domain_nodes;  ///< number of cells of the computational domain per direction
 
+  // ---- damage
+  bool damage_on = false;
+  std::vector<char> material_damages;
+
+  // ---- partitioning (001 §2.1-2.3, Alg. 1-3); arrays exist only when `partitioned`
+  bool partitioned = false;
+  bool partition_this_step = false;    ///< some particle has d̂ > 0
+  bool by_bodies = false;              ///< fields are the two bodies, always separable
+  NeighbourLists<D> neighbours;
+  std::vector<double> particle_dhat, particle_field;  ///< d̂_p = max(s_p, d_p), D̄(x_p)
+  std::vector<Vec<D>> particle_gradient;              ///< ∇D̄(x_p) (001 eq. 17-19)
+  std::vector<Vec<D>> node_gradient;                  ///< nonlocal nodal ∇D̄_i (001 Alg. 1)
+  std::array<std::vector<Vec<D>>, 2> node_mass_gradient;  ///< Σ m_p ∇S̄_ip per field (000 eq. 74)
+  std::array<std::vector<double>, 2> node_dhat;           ///< Σ S̄ m_p d̂_p per field (000 eq. 70)
+  std::array<std::vector<double>, 2> node_volume;         ///< Σ S̄ V_p per field (004 eq. 11)
+  std::array<std::vector<Vec<D>>, 2> node_position;       ///< Σ S̄ m_p x_p per field (004 eq. 8)
+  std::vector<double> node_dhat_max;                      ///< largest d̂ mapping to the node
+  std::vector<std::int64_t> two_field_nodes;
+  std::vector<double> node_friction_work;
+  long long contact_nodes_last_step = 0;
+
+  // ---- traction loads
+  std::vector<Vec<D>> load_force;  ///< f_p of this step [N per unit thickness in 2D]
+
   explicit Impl(Problem<D> p) : problem(std::move(p)) {
-    for (const auto& m : problem.materials) models.push_back({m.bulk_modulus, m.shear_modulus});
+    for (const auto& m : problem.materials) {
+      models.push_back({m.bulk_modulus, m.shear_modulus});
+      material_damages.push_back(m.damages() ? 1 : 0);
+      if (m.damages()) damage_on = true;
+    }
+    partitioned = partitioning_active(problem);
+    by_bodies = problem.contact.partitioning == Partitioning::bodies;
+    characteristic_length = problem.grid.cell_size * std::sqrt(double(D));
     grid.origin = problem.grid.min;
     grid.cell_size = problem.grid.cell_size;
     grid.inverse_cell_size = 1.0 / problem.grid.cell_size;
@@ -124,7 +193,26 @@ struct Solver<D>::Impl {
     double lightest = std::numeric_limits<double>::infinity();
     for (double m : problem.particles.mass) lightest = std::min(lightest, m);
     negligible_mass = std::isfinite(lightest) ? negligible_node_mass_fraction * lightest : 0.0;
+    if (!problem.loads.empty()) load_force.assign(problem.particles.size(), Vec<D>::Zero());
     compute_stress_and_energy_of_initial_state();
+  }
+
+  /// Stress, stored energy and damage bookkeeping of one particle from its F and damage: the
+  /// trial stress σ^E is degraded by d (001 eq. 26-27 or 000 eq. 7) and the stored energy is
+  /// ψ(F) − d ψ_t, ψ_t being the part of ψ that the degradation acts on.
+  double stress_and_stored_energy(std::int64_t p) {
+    auto& P = problem.particles;
+    const NeoHookean& model = models[P.material[p]];
+    const Mat<D> trial = model.cauchy<D>(P.F[p]);
+    const double psi = model.energy_density<D>(P.F[p]);
+    const double d = P.damage[p];
+    if (d <= 0.0) {
+      P.stress[p] = trial;
+      return psi;
+    }
+    const MaterialSpec& spec = problem.materials[P.material[p]];
+    P.stress[p] = degrade_stress<D>(trial, d, spec.degradation);
+    return psi - d * degradable_energy<D>(model, P.F[p], spec.degradation);
   }
 
   void compute_stress_and_energy_of_initial_state() {
@@ -133,9 +221,7 @@ struct Solver<D>::Impl {
     const std::int64_t n = static_cast<std::int64_t>(P.size());
 #pragma omp parallel for reduction(+ : kinetic, strain) schedule(static)
     for (std::int64_t p = 0; p < n; ++p) {
-      const NeoHookean& model = models[P.material[p]];
-      P.stress[p] = model.cauchy<D>(P.F[p]);
-      strain += P.volume0[p] * model.energy_density<D>(P.F[p]);
+      strain += P.volume0[p] * stress_and_stored_energy(p);
       kinetic += 0.5 * P.mass[p] * P.v[p].squaredNorm();
     }
     totals = EnergyAccumulators{};
@@ -221,11 +307,24 @@ struct Solver<D>::Impl {
 
   void resize_grid() {
     const std::size_t nodes = static_cast<std::size_t>(grid.node_count());
-    node_mass.assign(nodes, 0.0);
-    node_momentum.assign(nodes, Vec<D>::Zero());
-    node_force.assign(nodes, Vec<D>::Zero());
-    node_velocity_lumped.resize(nodes);
-    node_velocity.resize(nodes);
+    const int fields = partition_this_step ? 2 : 1;
+    for (int f = 0; f < fields; ++f) {
+      node_mass[f].assign(nodes, 0.0);
+      node_momentum[f].assign(nodes, Vec<D>::Zero());
+      node_force[f].assign(nodes, Vec<D>::Zero());
+      node_velocity_lumped[f].resize(nodes);
+      node_velocity[f].resize(nodes);
+    }
+    if (partition_this_step) {
+      node_gradient.assign(nodes, Vec<D>::Zero());
+      node_dhat_max.assign(nodes, 0.0);
+      for (int f = 0; f < 2; ++f) {
+        node_mass_gradient[f].assign(nodes, Vec<D>::Zero());
+        node_dhat[f].assign(nodes, 0.0);
+        node_volume[f].assign(nodes, 0.0);
+        if (problem.contact.position_gap_test) node_position[f].assign(nodes, Vec<D>::Zero());
+      }
+    }
     thread_slots = omp_get_max_threads();
   }
 
@@ -247,12 +346,30 @@ struct Solver<D>::Impl {
     }
     for (std::int64_t p = 0; p < n; ++p) ++strip_start[strip_of[p] + 1];
     for (std::int64_t s = 0; s < strips; ++s) strip_start[s + 1] += strip_start[s];
-    std::vector<std::int64_t>& cursor = strip_cursor;
-    cursor.assign(strip_start.begin(), strip_start.end() - 1);
-    for (std::int64_t p = 0; p < n; ++p) strip_order[cursor[strip_of[p]]++] = p;
+    strip_cursor.assign(strip_start.begin(), strip_start.end() - 1);
+    for (std::int64_t p = 0; p < n; ++p) strip_order[strip_cursor[strip_of[p]]++] = p;
   }
-  std::vector<std::int64_t> strip_cursor;
 
+  /// Runs body(p, stencil) over all particles, strip by strip in two parity passes, so that bodies
+  /// that scatter into the stencil's nodes never race and sum in a thread-independent order.
+  template <ShapeFunctionKind Kind, class Body>
+  void for_each_particle_scatter(Body&& body) {
+    const std::int64_t strips = static_cast<std::int64_t>(strip_start.size()) - 1;
+    for (std::int64_t parity = 0; parity < 2; ++parity) {
+#pragma omp parallel
+      {
+        Stencil<D> s;
+#pragma omp for schedule(dynamic, 1)
+        for (std::int64_t strip = parity; strip < strips; strip += 2) {
+          for (std::int64_t k = strip_start[strip]; k < strip_start[strip + 1]; ++k) {
+            const std::int64_t p = strip_order[k];
+            fill_stencil<Kind>(problem.particles, p, grid, s);
+            body(p, s);
+          }
+        }
+      }
+    }
+  }
 
   template <ShapeFunctionKind Kind>
   static void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<D>& g,
@@ -263,60 +380,179 @@ struct Solver<D>::Impl {
     else cpdi_stencil<D>(P.x[p], P.domain[p], g, s);
   }
 
-  /// 000 eq. (47)-(49): m_i = Σ S̄ m_p, p_i = Σ S̄ m_p v_p, f_i = Σ S̄ m_p g − Σ V_p σ_p ∇S̄.
+  /// d̂_p = max(s_p, d_p) and the kernel damage field with its gradient at every particle
+  /// (001 eq. 17-19, §2.4; 000 eq. 67). Skipped while every d̂ is zero: then no node can have
+  /// two fields.
+  void update_damage_field() {
+    const auto& P = problem.particles;
+    const std::int64_t n = static_cast<std::int64_t>(P.size());
+    particle_dhat.resize(P.size());
+    bool any = false;
+#pragma omp parallel for reduction(|| : any) schedule(static)
+    for (std::int64_t p = 0; p < n; ++p) {
+      particle_dhat[p] = std::max(static_cast<double>(P.surface[p]), P.damage[p]);
+      any = any || particle_dhat[p] > 0.0;
+    }
+    partition_this_step = any;
+    if (!any) return;
+    neighbours.update(P.x, characteristic_length, problem.contact.rebuild_fraction);
+    damage_field_gradient<D>(neighbours, P.x, particle_dhat, characteristic_length, particle_field,
+                             particle_gradient);
+  }
+
+  /// 001 Alg. 1: the nodal damage-field gradient is the particle gradient of largest norm among
+  /// the particles that map to the node (ties keep the earlier particle of the scatter order).
   template <ShapeFunctionKind Kind>
+  void nodal_damage_gradient() {
+    for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
+      const Vec<D>& g = particle_gradient[p];
+      if (g.squaredNorm() <= 0.0) return;
+      for (int e = 0; e < s.count; ++e)
+        fold_nodal_gradient<D>(g, node_gradient[static_cast<std::size_t>(s.node[e])]);
+    });
+  }
+
+  /// 001 Alg. 2: field 0 when ∇D̄_p · ∇D̄_i ≥ 0, else field 1. With partitioning by bodies the
+  /// field is the body id (two bodies, 004 §2.2 multimaterial contact).
+  int field_of(std::int64_t p, std::size_t node) const {
+    if (by_bodies) return problem.particles.body[p] == 0 ? 0 : 1;
+    return particle_field_at_node<D>(particle_gradient[p], node_gradient[node]);
+  }
+
+  /// 000 eq. (47)-(49): m_i = Σ S̄ m_p, p_i = Σ S̄ m_p v_p, f_i = Σ S̄ (m_p g + f_p) − Σ V_p σ_p ∇S̄,
+  /// into the particle's field at each node when partitioned (001 Alg. 2).
+  template <ShapeFunctionKind Kind, bool Partitioned>
   void particles_to_grid() {
     const auto& P = problem.particles;
     const Vec<D> gravity = problem.gravity;
-    bin_particles_into_strips();
-    const std::int64_t strips = static_cast<std::int64_t>(strip_start.size()) - 1;
-    for (std::int64_t parity = 0; parity < 2; ++parity) {
-#pragma omp parallel
-      {
-        Stencil<D> s;
-#pragma omp for schedule(dynamic, 1)
-        for (std::int64_t strip = parity; strip < strips; strip += 2) {
-          for (std::int64_t k = strip_start[strip]; k < strip_start[strip + 1]; ++k) {
-            const std::int64_t p = strip_order[k];
-            fill_stencil<Kind>(P, p, grid, s);
-            const double volume = P.volume0[p] * P.F[p].determinant();
-            const Mat<D> volume_stress = volume * P.stress[p];
-            const Vec<D> momentum = P.mass[p] * P.v[p];
-            const Vec<D> weight_force = P.mass[p] * gravity;
-            for (int e = 0; e < s.count; ++e) {
-              const std::size_t i = static_cast<std::size_t>(s.node[e]);
-              node_mass[i] += s.weight[e] * P.mass[p];
-              node_momentum[i] += s.weight[e] * momentum;
-              node_force[i] += s.weight[e] * weight_force - volume_stress * s.gradient[e];
-            }
-          }
+    const bool loaded = !load_force.empty();
+    const bool gap_test = problem.contact.position_gap_test;
+    for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
+      const double volume = P.volume0[p] * P.F[p].determinant();
+      const Mat<D> volume_stress = volume * P.stress[p];
+      const Vec<D> momentum = P.mass[p] * P.v[p];
+      const Vec<D> external = P.mass[p] * gravity + (loaded ? load_force[p] : Vec<D>::Zero());
+      for (int e = 0; e < s.count; ++e) {
+        const std::size_t i = static_cast<std::size_t>(s.node[e]);
+        int f = 0;
+        if constexpr (Partitioned) f = field_of(p, i);
+        node_mass[f][i] += s.weight[e] * P.mass[p];
+        node_momentum[f][i] += s.weight[e] * momentum;
+        node_force[f][i] += s.weight[e] * external - volume_stress * s.gradient[e];
+        if constexpr (Partitioned) {
+          node_mass_gradient[f][i] += P.mass[p] * s.gradient[e];
+          const double dhat = by_bodies ? 0.0 : particle_dhat[p];
+          node_dhat[f][i] += s.weight[e] * P.mass[p] * dhat;
+          node_volume[f][i] += s.weight[e] * volume;
+          if (s.weight[e] > 0.0) node_dhat_max[i] = std::max(node_dhat_max[i], dhat);
+          if (gap_test) node_position[f][i] += s.weight[e] * P.mass[p] * P.x[p];
+        }
+      }
+    });
+  }
+
+  void update_grid_velocities(double dt) {
+    const std::int64_t nodes = static_cast<std::int64_t>(node_mass[0].size());
+    const int fields = partition_this_step ? 2 : 1;
+    for (int f = 0; f < fields; ++f) {
+      const auto& mass = node_mass[f];
+      const auto& momentum = node_momentum[f];
+      const auto& force = node_force[f];
+      auto& lumped = node_velocity_lumped[f];
+      auto& velocity = node_velocity[f];
+#pragma omp parallel for schedule(static)
+      for (std::int64_t i = 0; i < nodes; ++i) {
+        if (mass[i] > negligible_mass) {
+          lumped[i] = momentum[i] / mass[i];
+          velocity[i] = lumped[i] + dt * force[i] / mass[i];
+        } else {
+          lumped[i].setZero();
+          velocity[i].setZero();
         }
       }
     }
   }
 
-  void update_grid_velocities(double dt) {
-    const std::int64_t nodes = static_cast<std::int64_t>(node_mass.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < nodes; ++i) {
-      if (node_mass[i] > negligible_mass) {
-        node_velocity_lumped[i] = node_momentum[i] / node_mass[i];
-        node_velocity[i] = node_velocity_lumped[i] + dt * node_force[i] / node_mass[i];
-      } else {
-        node_velocity_lumped[i].setZero();
-        node_velocity[i].setZero();
+  /// Two fields at a node either move as one (not separable: 001 Alg. 3 "treat as single field")
+  /// or exchange momentum through the contact law (000 eq. 72-77; 004 §2.6). Nodes are processed
+  /// independently; the friction work is summed serially in node order.
+  void resolve_two_field_nodes(double dt) {
+    const std::int64_t nodes = static_cast<std::int64_t>(node_mass[0].size());
+    two_field_nodes.clear();
+    for (std::int64_t i = 0; i < nodes; ++i)
+      if (node_mass[1][i] > negligible_mass) two_field_nodes.push_back(i);
+    const std::int64_t count = static_cast<std::int64_t>(two_field_nodes.size());
+    node_friction_work.assign(two_field_nodes.size(), 0.0);
+    const ContactSpec<D>& contact = problem.contact;
+    const bool prescribed_normal = contact.normal.squaredNorm() > 0.0;
+    const Vec<D> fixed_normal =
+        prescribed_normal ? Vec<D>(contact.normal.normalized()) : Vec<D>::Zero();
+    long long in_contact = 0;
+#pragma omp parallel for reduction(+ : in_contact) schedule(static)
+    for (std::int64_t k = 0; k < count; ++k) {
+      const std::size_t i = static_cast<std::size_t>(two_field_nodes[k]);
+      const double m0 = node_mass[0][i], m1 = node_mass[1][i];
+      if (m0 <= negligible_mass) {  // everything mapped to field 1: it is the node's only field
+        node_velocity[0][i] = node_velocity[1][i];
+        node_velocity_lumped[0][i] = node_velocity_lumped[1][i];
+        continue;
       }
+      // Separability (001 §2.3, Alg. 3; 000 eq. 70-71) on d̂ = max(s, d).
+      const double mean0 = node_dhat[0][i] / m0, mean1 = node_dhat[1][i] / m1;
+      const bool separable = by_bodies || (node_dhat_max[i] >= contact.critical_damage &&
+                                           std::min(mean0, mean1) > contact.minimum_damage);
+      // Normal from field 0 towards field 1: mass gradients point out of their field (000 eq. 74),
+      // so n₀ = (g₀ − g₁)/|g₀ − g₁| and n₁ = −n₀ exactly (momentum-conserving pair).
+      Vec<D> normal = node_mass_gradient[0][i] - node_mass_gradient[1][i];
+      if (prescribed_normal) normal = normal.dot(fixed_normal) >= 0.0 ? fixed_normal : Vec<D>(-fixed_normal);
+      const double normal_length = normal.norm();
+      if (!separable || !(normal_length > 0.0)) {
+        const double m = m0 + m1;
+        const Vec<D> lumped = (node_momentum[0][i] + node_momentum[1][i]) / m;
+        const Vec<D> velocity = (m0 * node_velocity[0][i] + m1 * node_velocity[1][i]) / m;
+        for (int f = 0; f < 2; ++f) {
+          node_velocity_lumped[f][i] = lumped;
+          node_velocity[f][i] = velocity;
+        }
+        continue;
+      }
+      ContactNode<D> pair;
+      pair.mass_a = m0;
+      pair.mass_b = m1;
+      pair.velocity_a = node_velocity[0][i];
+      pair.velocity_b = node_velocity[1][i];
+      pair.normal = normal / normal_length;
+      pair.area = contact_area_2d(node_volume[0][i] + node_volume[1][i], node_volume[0][i],
+                                  node_volume[1][i], grid.cell_size, 1.0);
+      if (contact.position_gap_test) {
+        // 004 eq. (8) with the normal pointing from a to b: the surfaces overlap when the field
+        // centres are closer along n than 0.8 h (the printed (x_a − x_b)·n has the opposite sign
+        // to the stated normal direction).
+        const Vec<D> centre0 = node_position[0][i] / m0, centre1 = node_position[1][i] / m1;
+        pair.gap_closed = (centre1 - centre0).dot(pair.normal) - 0.8 * grid.cell_size < 0.0;
+      }
+      const ContactExchange<D> exchange =
+          exchange_momentum<D>(pair, contact.friction, dt, FrictionWorkOrder::first);
+      if (!exchange.in_contact) continue;
+      ++in_contact;
+      node_velocity[0][i] += exchange.momentum_change_a / m0;
+      node_velocity[1][i] -= exchange.momentum_change_a / m1;
+      node_friction_work[k] = exchange.friction_work;
     }
+    double friction = 0.0;
+    for (double w : node_friction_work) friction += w;
+    totals.friction_work += friction;
+    contact_nodes_last_step = in_contact;
   }
 
-  /// Rigid walls (004 §2.12: the material side takes the wall's velocity where it approaches).
-  /// Node impulses J give each wall's reaction force and the wall work Σ J·v_wall. Friction work is
-  /// the tangential force times the slip it acts over, Σ |J_t|·|u_t| with u_t the slip velocity
-  /// left after the step: an energy measured with impulses, which FLIP transfers exactly, rather
-  /// than with nodal kinetic energies, which it does not.
+  /// Rigid walls (004 §2.12: a field in contact with a wall takes the wall's velocity in the
+  /// normal direction; the friction law limits the tangential change). Node impulses J give each
+  /// wall's reaction force and the wall work Σ J·v_wall. Friction work comes from the same
+  /// exchange as between two fields, with the wall as an infinitely heavy partner.
   void apply_walls(double dt) {
-    const std::int64_t nodes = static_cast<std::int64_t>(node_mass.size());
+    const std::int64_t nodes = static_cast<std::int64_t>(node_mass[0].size());
     const double tolerance = 1e-9 * grid.cell_size;
+    const int fields = partition_this_step ? 2 : 1;
     for (std::size_t w = 0; w < problem.walls.size(); ++w) {
       const WallSpec<D>& wall = problem.walls[w];
       const Vec<D> wall_velocity = wall.velocity.velocity(time + dt);
@@ -326,34 +562,37 @@ struct Solver<D>::Impl {
       // Serial and in node order: few nodes pass the plane test, and the sums must not depend on
       // the thread count.
       for (std::int64_t i = 0; i < nodes; ++i) {
-        const double m = node_mass[i];
-        if (m <= negligible_mass) continue;
-        const Vec<D> X = grid.position(grid.global(i));
-        if ((X - wall_point).dot(wall.normal) > tolerance) continue;  // in front of the wall
-        const Vec<D> relative = node_velocity[i] - wall_velocity;
-        const double approach = relative.dot(wall.normal);
-        const Vec<D> tangential = relative - approach * wall.normal;
-        Vec<D> change = Vec<D>::Zero();
-        switch (wall.kind) {
-          case WallKind::fixed: change = -relative; break;
-          case WallKind::roller: change = -approach * wall.normal; break;
-          case WallKind::contact: {
-            if (approach >= 0.0) continue;  // separating: no contact
-            change = -approach * wall.normal;
-            const double slip = tangential.norm();
-            if (slip > 0.0) {
-              // Coulomb: the tangential velocity change is limited by μ times the normal one.
-              const double fraction = std::min(
-                  1.0, std::get<CoulombFriction>(wall.friction).coefficient * (-approach) / slip);
-              change -= fraction * tangential;
-              friction += m * fraction * slip * (1.0 - fraction) * slip;
+        if ((grid.position(grid.global(i)) - wall_point).dot(wall.normal) > tolerance) continue;
+        for (int f = 0; f < fields; ++f) {
+          const double m = node_mass[f][i];
+          if (m <= negligible_mass) continue;
+          Vec<D>& velocity = node_velocity[f][i];
+          const Vec<D> relative = velocity - wall_velocity;
+          const double approach = relative.dot(wall.normal);
+          Vec<D> change = Vec<D>::Zero();
+          switch (wall.kind) {
+            case WallKind::fixed: change = -relative; break;
+            case WallKind::roller: change = -approach * wall.normal; break;
+            case WallKind::contact: {
+              ContactNode<D> pair;
+              pair.mass_a = m;
+              pair.mass_b = std::numeric_limits<double>::infinity();
+              pair.velocity_a = velocity;
+              pair.velocity_b = wall_velocity;
+              pair.normal = -wall.normal;  // from the material towards the wall
+              pair.area = 0.0;
+              const ContactExchange<D> exchange =
+                  exchange_momentum<D>(pair, wall.friction, dt, FrictionWorkOrder::first);
+              if (!exchange.in_contact) continue;
+              change = exchange.momentum_change_a / m;
+              friction += exchange.friction_work;
+              break;
             }
-            break;
           }
+          velocity += change;
+          impulse_sum += m * change;
+          work += m * change.dot(wall_velocity);
         }
-        node_velocity[i] += change;
-        impulse_sum += m * change;
-        work += m * change.dot(wall_velocity);
       }
       row.wall_force[w] = -impulse_sum / dt;  // force of the material on the wall
       totals.wall_work += work;
@@ -361,18 +600,35 @@ struct Solver<D>::Impl {
     }
   }
 
-  /// G2P (000 eq. 64-66) and the stress update that closes the step (update-stress-last).
-  template <ShapeFunctionKind Kind>
+  /// Failed particles keep their CPDI domain within one cell: the longest diagonal is scaled down
+  /// to h (001 §2.6), so a fully damaged particle cannot smear across the crack it opened.
+  void limit_failed_domain(Mat<D>& domain) const {
+    double longest2 = 0.0;
+    for (int signs = 0; signs < (1 << (D - 1)); ++signs) {
+      Vec<D> diagonal = domain.col(0);
+      for (int k = 1; k < D; ++k) diagonal += ((signs >> (k - 1)) & 1 ? -1.0 : 1.0) * domain.col(k);
+      longest2 = std::max(longest2, diagonal.squaredNorm());
+    }
+    const double limit2 = grid.cell_size * grid.cell_size;
+    if (longest2 > limit2) domain *= std::sqrt(limit2 / longest2);
+  }
+
+  /// G2P (000 eq. 64-66) and the stress update that closes the step (update-stress-last), with the
+  /// damage law evaluated on the trial stress.
+  template <ShapeFunctionKind Kind, bool Partitioned>
   std::optional<NumericalFailure> grid_to_particles(double dt) {
     auto& P = problem.particles;
     const std::int64_t n = static_cast<std::int64_t>(P.size());
     const double pic = problem.time.pic_fraction;
     const bool deform_domain = Kind == ShapeFunctionKind::cpdi;
     const Vec<D> gravity = problem.gravity;
-    double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, max_speed = 0.0;
+    const bool loaded = !load_force.empty();
+    double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0,
+           max_speed = 0.0;
     std::int64_t failed = -1;
     std::vector<double> momentum_parts(static_cast<std::size_t>(D) * thread_slots, 0.0);
-#pragma omp parallel reduction(+ : kinetic, strain, gravity_work) reduction(max : max_speed)
+#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated) \
+    reduction(max : max_speed)
     {
       Stencil<D> s;
       Vec<D> momentum = Vec<D>::Zero();
@@ -384,9 +640,12 @@ struct Solver<D>::Impl {
         Mat<D> velocity_gradient = Mat<D>::Zero();
         for (int e = 0; e < s.count; ++e) {
           const std::size_t i = static_cast<std::size_t>(s.node[e]);
-          v_pic += s.weight[e] * node_velocity[i];
-          v_change += s.weight[e] * (node_velocity[i] - node_velocity_lumped[i]);
-          velocity_gradient += node_velocity[i] * s.gradient[e].transpose();
+          int f = 0;
+          if constexpr (Partitioned) f = field_of(p, i);
+          const Vec<D>& velocity = node_velocity[f][i];
+          v_pic += s.weight[e] * velocity;
+          v_change += s.weight[e] * (velocity - node_velocity_lumped[f][i]);
+          velocity_gradient += velocity * s.gradient[e].transpose();
         }
         const Vec<D> displacement = dt * v_pic;
         P.x[p] += displacement;
@@ -404,11 +663,33 @@ struct Solver<D>::Impl {
           if (first_failed < 0) first_failed = p;
           continue;
         }
-        const NeoHookean& model = models[P.material[p]];
-        P.stress[p] = model.cauchy<D>(P.F[p]);
-        strain += P.volume0[p] * model.energy_density<D>(P.F[p]);
+        const int material = P.material[p];
+        const NeoHookean& model = models[material];
+        if (material_damages[material]) {
+          const MaterialSpec& spec = problem.materials[material];
+          const Mat<D> trial = model.cauchy<D>(P.F[p]);
+          const double damage_before = P.damage[p];
+          update_damage<D>(spec.damage, trial, P.strength[p], characteristic_length, dt,
+                           P.damage_history[p], P.damage[p]);
+          const double psi = model.energy_density<D>(P.F[p]);
+          if (P.damage[p] > 0.0) {
+            const double degradable = degradable_energy<D>(model, P.F[p], spec.degradation);
+            // Energy released at fixed deformation by the damage increment (secant dissipation).
+            dissipated += P.volume0[p] * (P.damage[p] - damage_before) * degradable;
+            strain += P.volume0[p] * (psi - P.damage[p] * degradable);
+            P.stress[p] = degrade_stress<D>(trial, P.damage[p], spec.degradation);
+            if (deform_domain && P.damage[p] >= 1.0) limit_failed_domain(P.domain[p]);
+          } else {
+            strain += P.volume0[p] * psi;
+            P.stress[p] = trial;
+          }
+        } else {
+          P.stress[p] = model.cauchy<D>(P.F[p]);
+          strain += P.volume0[p] * model.energy_density<D>(P.F[p]);
+        }
         kinetic += 0.5 * P.mass[p] * P.v[p].squaredNorm();
         gravity_work += P.mass[p] * gravity.dot(displacement);
+        if (loaded) load_work += load_force[p].dot(displacement);
         momentum += P.mass[p] * P.v[p];
         const double density = P.mass[p] / (P.volume0[p] * J);
         max_speed = std::max(max_speed, model.wave_speed(density) + P.v[p].norm());
@@ -425,8 +706,9 @@ struct Solver<D>::Impl {
       failure.particle = failed;
       failure.what = "particle " + std::to_string(failed) + " (body " +
                      std::to_string(P.body[failed]) + ", material '" +
-                     problem.materials[P.material[failed]].name +
-                     "') became inverted or non-finite: J = " +
+                     problem.materials[P.material[failed]].name + "', damage " +
+                     std::to_string(P.damage[failed]) +
+                     ") became inverted or non-finite: J = " +
                      std::to_string(P.F[failed].determinant()) + ", F = " +
                      format_matrix<D>(P.F[failed]) + ", x = " + format_vector<D>(P.x[failed]) +
                      " m, v = " + format_vector<D>(P.v[failed]) + " m/s, dt = " +
@@ -439,6 +721,8 @@ struct Solver<D>::Impl {
     row.kinetic = kinetic;
     row.strain = strain;
     totals.gravity_work += gravity_work;
+    totals.load_work += load_work;
+    totals.dissipated += dissipated;
 
     next_dt_limit = max_speed > 0.0
                         ? problem.time.cfl * grid.cell_size / (std::sqrt(double(D)) * max_speed)
@@ -446,12 +730,29 @@ struct Solver<D>::Impl {
     return std::nullopt;
   }
 
+  void update_load_forces() {
+    for (auto& f : load_force) f.setZero();
+    for (const TractionLoad<D>& load : problem.loads) {
+      const Vec<D> traction = load.traction(time);
+      for (std::size_t k = 0; k < load.particles.size(); ++k)
+        load_force[static_cast<std::size_t>(load.particles[k])] += load.boundary_measure[k] * traction;
+    }
+  }
+
   template <ShapeFunctionKind Kind>
   std::optional<NumericalFailure> advance(double dt) {
-    particles_to_grid<Kind>();
+    if (partition_this_step) {
+      if (!by_bodies) nodal_damage_gradient<Kind>();
+      particles_to_grid<Kind, true>();
+      update_grid_velocities(dt);
+      resolve_two_field_nodes(dt);
+      if (!problem.walls.empty()) apply_walls(dt);
+      return grid_to_particles<Kind, true>(dt);
+    }
+    particles_to_grid<Kind, false>();
     update_grid_velocities(dt);
     if (!problem.walls.empty()) apply_walls(dt);
-    return grid_to_particles<Kind>(dt);
+    return grid_to_particles<Kind, false>(dt);
   }
 
   std::optional<NumericalFailure> take_step(double dt_cap) {
@@ -463,7 +764,11 @@ struct Solver<D>::Impl {
       return failure;
     }
     if (auto failure = update_active_region()) return failure;
+    partition_this_step = by_bodies;
+    if (partitioned && !by_bodies) update_damage_field();
     resize_grid();
+    bin_particles_into_strips();
+    if (!load_force.empty()) update_load_forces();
     std::optional<NumericalFailure> failure;
     switch (problem.grid.shape_function) {
       case ShapeFunctionKind::linear: failure = advance<ShapeFunctionKind::linear>(dt); break;
@@ -478,7 +783,8 @@ struct Solver<D>::Impl {
     row.dt = dt;
     row.totals = totals;
     row.balance_error = (row.kinetic + row.strain + totals.dissipated + totals.friction_work) -
-                        (totals.initial_energy + totals.wall_work + totals.gravity_work);
+                        (totals.initial_energy + totals.wall_work + totals.gravity_work +
+                         totals.load_work);
     for (std::size_t w = 0; w < problem.walls.size(); ++w)
       row.wall_displacement[w] = problem.walls[w].velocity.displacement(time);
     return std::nullopt;

@@ -2,6 +2,10 @@
 // Damage laws (DESIGN §4 "Damage laws"), chosen per material. Plain structs in a std::variant: the
 // per-particle dispatch is a jump table, not a virtual call.
 #include <variant>
+#include <vector>
+
+#include "fragmpm/mpm/neo_hookean.hpp"
+#include "fragmpm/mpm/types.hpp"
 
 namespace fragmpm::mpm {
 
@@ -37,5 +41,63 @@ struct WeibullStrength {
   double thickness = 0.0;           ///< out-of-plane thickness for V in 2D [m]
   unsigned long long seed = 0;
 };
+
+// ---------------------------------------------------------------------------------------------
+// Damage mechanics (implemented in damage_law.cpp; D = 2 plane strain and D = 3 instantiated).
+
+/// Mesh-regularised damage modulus H_s = H̄ l_ch / (1 − H̄ l_ch) with the brittleness
+/// H̄ = σ_f² / (2 E G_f) (000 eq. 20-21). `strength` σ_f [Pa], `characteristic_length` l_ch [m]
+/// (the cell diagonal). Returns NaN when H̄ l_ch ≥ 1: the element would have to snap back to
+/// dissipate G_f, so no mesh-regularised softening exists at this cell size.
+double rankine_softening_modulus(double strength, const RankineSoftening& law, double characteristic_length);
+
+/// Largest cell size h [m] for which H̄ l_ch < 1 with l_ch = h √D: every h strictly below it is
+/// admissible (000 eq. 21). `dimension` D = 2 or 3.
+double rankine_largest_cell_size(double strength, const RankineSoftening& law, int dimension);
+
+/// One damage update from the trial (undamaged, "effective") Cauchy stress σ̄ [Pa] of a particle
+/// with strength σ_f [Pa] and characteristic length l_ch [m], over a step dt [s]. `history` keeps
+/// the largest principal stress max_t σ̄₁ seen so far [Pa] (the R of 000 eq. 19 is
+/// max(σ_f, history)); `damage` is d ∈ [0, 1]; both are updated in place and never decrease.
+///  * RankineSoftening: d = (1 + H_s)(1 − σ_f / R), capped at 1 (000 eq. 20).
+///  * TimeToFailure: once σ̄₁ has reached σ_f, d ← min(1, d + dt/τ) every step with τ = l_ch / c_f
+///    (001 eq. 24), also after the stress has dropped again.
+///  * NoDamage: nothing changes.
+template <int D>
+void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double strength,
+                   double characteristic_length, double dt, double& history, double& damage);
+
+/// Largest principal value of a symmetric stress [Pa]; in 2D the largest in-plane one (see
+/// damage_law.cpp for why the out-of-plane stress of plane strain never decides a tensile failure).
+template <int D>
+double largest_principal_stress(const Mat<D>& stress);
+
+/// Degraded Cauchy stress [Pa] from the trial stress σ̄ and damage d: tensile principal stresses
+/// scaled by (1 − d), compressive ones kept, same eigenvectors (001 eq. 26-27); or σ = (1 − d) σ̄
+/// (000 eq. 7).
+template <int D>
+Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation degradation);
+
+/// The energy per reference volume that damage acts on, ψ_t [J/m³]: the stored (recoverable)
+/// energy is ψ(F) − d ψ_t and the damage dissipation of a step is Δd ψ_t.
+///  * isotropic: ψ_t = ψ(F), since σ = (1 − d) σ̄ derives from (1 − d) ψ;
+///  * tensile spectral: ψ_t = ½ Σ_{τ_i > 0} τ_i ln λ_i, with τ_i the principal Kirchhoff stresses and
+///    λ_i the principal stretches (b = F Fᵀ, coaxial with τ for an isotropic material). In 2D the
+///    out-of-plane direction has λ₃ = 1 and adds nothing.
+/// Why this is the secant dissipation: see damage_law.cpp; for uniaxial small strain it integrates
+/// to ∫ ψ_t dd = G_f / l_ch per unit volume, i.e. G_f per unit area of a crack band of width l_ch.
+template <int D>
+double degradable_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation);
+
+/// Median of the Weibull strength of a particle of volume V [m³]: σ̄_f (V̄ / V)^{1/m} (001 eq. 25 with
+/// ℛ = ½). In 2D `volume` is an area and is multiplied by the thickness.
+double weibull_median_strength(double volume, const WeibullStrength& weibull, int dimension);
+
+/// Weibull strength per particle [Pa] (001 eq. 25): σ_f = σ̄_f (V̄/V · ln ℛ / ln ½)^{1/m}, ℛ uniform in
+/// (0, 1) from std::mt19937_64 seeded with `weibull.seed`, drawn in particle order (so a scene and a
+/// seed give the same strengths on every platform). `volumes` are the particles' volumes [m³], or
+/// areas [m²] in 2D, which are multiplied by `weibull.thickness`.
+std::vector<double> weibull_strengths(const std::vector<double>& volumes, const WeibullStrength& weibull,
+                                      int dimension);
 
 }  // namespace fragmpm::mpm

@@ -34,7 +34,8 @@ struct SmoothStaticDynamicFriction {
   double half_velocity = 0.0;        ///< v½ [m/s]
 };
 
-/// μ = μ₀ ⟨1 − (θ − θ_ref)/(θ_dam − θ_ref)⟩ (000 eq. 15): friction vanishes at θ_dam.
+/// μ = μ₀ ⟨θ_dam − θ⟩² / (θ_dam − θ_ref)² (000 eq. 15, ⟨·⟩ the Macaulay bracket) with θ the
+/// hotter side's temperature: μ = μ₀ at θ_ref, friction vanishes at and above θ_dam.
 struct ThermalSofteningFriction {
   double coefficient = 0.0;            ///< μ₀ at θ_ref
   double reference_temperature = 0.0;  ///< θ_ref [K]
@@ -43,5 +44,27 @@ struct ThermalSofteningFriction {
 
 using FrictionLaw = std::variant<CoulombFriction, VelocityDependentFriction, AdhesiveFriction,
                                  SmoothStaticDynamicFriction, ThermalSofteningFriction>;
+
+/// μ(|Δv′|) = μ₀ + k |Δv′| at slip speed `slip` [m/s] (004 §2.8).
+inline double friction_coefficient(const VelocityDependentFriction& law, double slip) {
+  return law.coefficient + law.slope * slip;
+}
+
+/// μ(|Δv′|) = (μ_s v½ + μ_d |Δv′|) / (v½ + |Δv′|) at slip speed `slip` [m/s] (004 eq. 42).
+/// v½ = 0 is the sharp static/dynamic law: μ_s at rest, μ_d once sliding.
+inline double friction_coefficient(const SmoothStaticDynamicFriction& law, double slip) {
+  const double denominator = law.half_velocity + slip;
+  if (denominator <= 0.0) return law.static_coefficient;
+  return (law.static_coefficient * law.half_velocity + law.dynamic_coefficient * slip) / denominator;
+}
+
+/// μ(θ) = μ₀ ⟨θ_dam − θ⟩² / (θ_dam − θ_ref)² at temperature θ [K] (000 eq. 15).
+inline double friction_coefficient(const ThermalSofteningFriction& law, double temperature) {
+  const double span = law.damage_temperature - law.reference_temperature;
+  const double remaining = law.damage_temperature - temperature;
+  if (remaining <= 0.0) return 0.0;                // Macaulay bracket ⟨θ_dam − θ⟩
+  if (span == 0.0) return law.coefficient;         // degenerate θ_dam = θ_ref: a step at θ_dam
+  return law.coefficient * (remaining * remaining) / (span * span);
+}
 
 }  // namespace fragmpm::mpm

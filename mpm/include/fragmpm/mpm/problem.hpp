@@ -74,6 +74,8 @@ struct TractionLoad {
 enum class Partitioning {
   automatic,  ///< on when the scene has more than one body or a damaging material
   off,        ///< one velocity field everywhere (the "single-field" comparison runs)
+  bodies,     ///< field = (body ≠ 0), always separable: a-priori multimaterial contact (004 §2.2),
+              ///< the two-body reference of the self-contact check (001 §3.1)
 };
 
 template <int D>

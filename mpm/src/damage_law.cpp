@@ -1,0 +1,168 @@
+// Damage laws: Rankine with mesh-regularised linear softening (000 eq. 19-21), time to failure
+// (001 eq. 24), Weibull strengths (001 eq. 25), stress degradation (001 eq. 26-27; 000 eq. 7) and
+// the energy that damage dissipates.
+#include "fragmpm/mpm/damage_law.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+
+namespace fragmpm::mpm {
+namespace {
+
+/// H̄ = σ_f² / (2 E G_f) [1/m] (000 eq. 21).
+double brittleness(double strength, const RankineSoftening& law) {
+  return strength * strength / (2.0 * law.youngs_modulus * law.fracture_energy);
+}
+
+/// Damage within a few ulps of 1 is 1: the time-to-failure increments Δt/τ are decimal fractions
+/// (e.g. 0.1) whose binary sum over τ/Δt steps can fall short of 1 by round-off; without this a
+/// particle would need one extra step to fail.
+double snap_to_one(double d) { return d >= 1.0 - 64.0 * std::numeric_limits<double>::epsilon() ? 1.0 : d; }
+
+template <int D>
+using Eigensolver = Eigen::SelfAdjointEigenSolver<Mat<D>>;
+
+}  // namespace
+
+double rankine_softening_modulus(double strength, const RankineSoftening& law, double characteristic_length) {
+  const double x = brittleness(strength, law) * characteristic_length;  // H̄ l_ch
+  if (!(x >= 0.0 && x < 1.0)) return std::numeric_limits<double>::quiet_NaN();
+  return x / (1.0 - x);  // 000 eq. (20): H_s = H̄ l_ch / (1 − H̄ l_ch)
+}
+
+double rankine_largest_cell_size(double strength, const RankineSoftening& law, int dimension) {
+  // H̄ h √D < 1  ⇔  h < 1 / (H̄ √D) = 2 E G_f / (σ_f² √D).
+  return 1.0 / (brittleness(strength, law) * std::sqrt(static_cast<double>(dimension)));
+}
+
+// Plane strain (D = 2): the trial stress holds only the in-plane block. At small strain the
+// out-of-plane stress is σ₃₃ = ν (σ₁ + σ₂) with σ₁ ≥ σ₂ the in-plane principal stresses. Whenever
+// anything is in tension, σ₁ > 0, and then σ₃₃ − σ₁ = ν σ₂ − (1 − ν) σ₁ ≤ ν σ₁ − (1 − ν) σ₁ =
+// (2ν − 1) σ₁ ≤ 0 for ν ≤ ½; when σ₁ ≤ 0 all three are compressive (σ₃₃ ≤ 0). So σ₃₃ never exceeds
+// the largest in-plane principal stress while it could reach σ_f > 0, and the in-plane maximum is
+// the Rankine equivalent stress (000 eq. 19).
+template <int D>
+double largest_principal_stress(const Mat<D>& stress) {
+  if constexpr (D == 2) {
+    // Closed form: mean + radius of Mohr's circle.
+    const double mean = 0.5 * (stress(0, 0) + stress(1, 1));
+    const double half_diff = 0.5 * (stress(0, 0) - stress(1, 1));
+    const double shear = 0.5 * (stress(0, 1) + stress(1, 0));
+    return mean + std::hypot(half_diff, shear);
+  } else {
+    Eigensolver<D> es;
+    es.computeDirect(stress, Eigen::EigenvaluesOnly);
+    return es.eigenvalues().maxCoeff();
+  }
+}
+
+template <int D>
+void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double strength, double characteristic_length,
+                   double dt, double& history, double& damage) {
+  if (std::holds_alternative<NoDamage>(law)) return;
+  // An infinite (or NaN) strength never fails: such particles keep their history untouched too.
+  if (!std::isfinite(strength)) return;
+  history = std::max(history, largest_principal_stress<D>(trial_stress));
+
+  if (const auto* rankine = std::get_if<RankineSoftening>(&law)) {
+    const double R = std::max(strength, history);  // 000 eq. (19)
+    if (!(R > strength)) return;
+    const double H_s = rankine_softening_modulus(strength, *rankine, characteristic_length);
+    // A cell too coarse for this particle's strength (snap-back; the scene refuses it for the
+    // nominal strength, but a strong Weibull draw may still exceed it): no softening branch exists,
+    // so the particle fails at once, which is the limit H_s → ∞ of eq. (20).
+    double d = 1.0;
+    if (std::isfinite(H_s)) d = std::min(1.0, (1.0 + H_s) * (1.0 - strength / R));  // 000 eq. (20)
+    damage = std::max(damage, d);
+    return;
+  }
+  if (const auto* ttf = std::get_if<TimeToFailure>(&law)) {
+    if (!(history >= strength) || damage >= 1.0) return;
+    // τ = l_ch / c_f is the time the crack needs to cross the particle (001 §2.7; the paper's
+    // "τ = c_f/ℓ" has the ratio inverted, see damage_law.hpp).
+    const double tau = characteristic_length / ttf->crack_speed;
+    damage = snap_to_one(std::min(1.0, damage + dt / tau));  // 001 eq. (24)
+  }
+}
+
+template <int D>
+Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation degradation) {
+  if (damage <= 0.0) return trial_stress;
+  if (degradation == Degradation::isotropic) return (1.0 - damage) * trial_stress;  // 000 eq. (7)
+  // 001 eq. (26-27): scale the tensile principal stresses, keep the compressive ones, rebuild with
+  // the same eigenvectors.
+  Eigensolver<D> es;
+  es.computeDirect(trial_stress);
+  Vec<D> values = es.eigenvalues();
+  for (int i = 0; i < D; ++i)
+    if (values[i] > 0.0) values[i] *= 1.0 - damage;
+  return es.eigenvectors() * values.asDiagonal() * es.eigenvectors().transpose();
+}
+
+// Why Δd ψ_t is the dissipation (DESIGN §4: "the energy released must equal what the damage law
+// dissipates"). Small strain first: at fixed d the degraded stress is σ = σ̄ − d σ̄⁺ with σ̄ = C ε and
+// σ̄⁺ its tensile principal part. Unloading along the ray s ε (s from 1 to 0) keeps the principal
+// directions and the signs of σ̄, and σ is linear in s, so the energy given back is
+//   ∫₀¹ σ(s ε) : ε ds = ½ σ̄ : ε − d ½ σ̄⁺ : ε = ψ − d ψ_t,   ψ_t = ½ Σ_{σ̄_i > 0} σ̄_i ε_i.
+// That recoverable (secant) energy is the stored energy; raising d by Δd at fixed strain releases
+// Δd ψ_t, the energy release Y Δd of 000 eq. (6). Along a proportional strain path (uniaxial
+// tension, the mode-I loading of a crack band) dψ_t = σ̄⁺ : dε, so the work σ : dε minus the change of
+// stored energy is exactly Δd ψ_t at every step. In uniaxial tension σ = (1 − d) E ε with eq. (20)
+// falls linearly from σ_f at ε_f = σ_f/E to zero at ε_u = σ_f (1 + H_s) / (E H_s); the triangle's
+// area ½ σ_f ε_u = σ_f² / (2 E H̄ l_ch) = G_f / l_ch (because (1 + H_s)/H_s = 1/(H̄ l_ch)) is the
+// energy dissipated per unit volume, so a band of width l_ch dissipates G_f per unit crack area.
+// Finite strain: the same argument with Kirchhoff stress and logarithmic strain ln λ_i (exact for a
+// Hencky material, to O(ε) for the neo-Hookean). Isotropic degradation is the special case
+// σ̄⁺ = σ̄, where (1 − d) ψ is an exact potential and ψ_t = ψ for any path. For non-proportional
+// mixed-sign paths ψ_t is the secant estimate of the release.
+template <int D>
+double degradable_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation) {
+  if (degradation == Degradation::isotropic) return model.energy_density<D>(F);
+  const Mat<D> b = F * F.transpose();
+  const Mat<D> tau = model.kirchhoff<D>(F);
+  Eigensolver<D> es;
+  es.computeDirect(b);
+  double psi_t = 0.0;
+  for (int i = 0; i < D; ++i) {
+    const Vec<D> n = es.eigenvectors().col(i);
+    const double tau_i = n.dot(tau * n);  // τ is coaxial with b (isotropic material)
+    // ln λ_i = ½ ln(λ_i²); the out-of-plane direction of plane strain has λ₃ = 1 and adds nothing.
+    if (tau_i > 0.0) psi_t += 0.25 * tau_i * std::log(es.eigenvalues()[i]);
+  }
+  return psi_t;
+}
+
+double weibull_median_strength(double volume, const WeibullStrength& w, int dimension) {
+  const double V = dimension == 2 ? volume * w.thickness : volume;
+  return w.reference_strength * std::pow(w.reference_volume / V, 1.0 / w.modulus);
+}
+
+std::vector<double> weibull_strengths(const std::vector<double>& volumes, const WeibullStrength& w, int dimension) {
+  std::mt19937_64 rng(w.seed);
+  std::vector<double> out(volumes.size());
+  const double ln_half = std::log(0.5);
+  for (std::size_t p = 0; p < volumes.size(); ++p) {
+    // ℛ uniform in the open interval (0, 1) from the top 53 bits: the mid-points (k + ½) 2⁻⁵³ never
+    // give ln ℛ = 0 or −∞, and the mapping is the same on every standard library (unlike
+    // std::uniform_real_distribution).
+    const double R = (static_cast<double>(rng() >> 11) + 0.5) * 0x1p-53;
+    const double V = dimension == 2 ? volumes[p] * w.thickness : volumes[p];
+    out[p] = w.reference_strength * std::pow(w.reference_volume / V * std::log(R) / ln_half, 1.0 / w.modulus);  // 001 eq. (25)
+  }
+  return out;
+}
+
+template double largest_principal_stress<2>(const Mat<2>&);
+template double largest_principal_stress<3>(const Mat<3>&);
+template void update_damage<2>(const DamageLaw&, const Mat<2>&, double, double, double, double&, double&);
+template void update_damage<3>(const DamageLaw&, const Mat<3>&, double, double, double, double&, double&);
+template Mat<2> degrade_stress<2>(const Mat<2>&, double, Degradation);
+template Mat<3> degrade_stress<3>(const Mat<3>&, double, Degradation);
+template double degradable_energy<2>(const NeoHookean&, const Mat<2>&, Degradation);
+template double degradable_energy<3>(const NeoHookean&, const Mat<3>&, Degradation);
+
+}  // namespace fragmpm::mpm
