@@ -14,6 +14,13 @@ const std::vector<VerifyCase>& verify_cases() {
   static const std::vector<VerifyCase> cases{
       {"bar", "V1 axial vibration of an elastic bar: centre-of-mass velocity over one period",
        verify_bar},
+      {"billet", "P2 self-contact vs two-body contact vs one field: horizontal velocities",
+       verify_billet},
+      {"notched-bar", "V6 notched bar struck by a disk: damage dissipation vs G_f x crack",
+       verify_notched_bar},
+      {"kalthoff", "P1 Kalthoff-Winkler plate: crack angle and crack speed", verify_kalthoff},
+      {"sliding-block", "V2 sliding block, four friction laws: end-of-slide velocity and friction work vs the rigid block",
+       verify_sliding_block},
   };
   return cases;
 }

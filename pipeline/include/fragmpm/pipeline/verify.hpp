@@ -42,6 +42,24 @@ const std::vector<VerifyCase>& verify_cases();
 /// V1: axial vibration of an elastic bar (BENCHMARKS.md), CPDI and linear shape functions.
 std::vector<VerifyRow> verify_bar(const VerifyOptions& options);
 
+/// V2: sliding block with four friction laws against the rigid-block oracle (BENCHMARKS.md; 004 §3):
+/// end-of-slide velocity and friction work per variant (law) and cell size.
+std::vector<VerifyRow> verify_sliding_block(const VerifyOptions& options);
+
+/// One level of V2: `variant` is a law ("coulomb", "velocity-dependent", "adhesion",
+/// "static-dynamic"), optionally suffixed "-computed-normal" (normals from mass gradients instead of
+/// the specified (0, 1)); returns the velocity and friction-work rows.
+std::vector<VerifyRow> verify_sliding_block_level(const std::string& variant, int level, double cell_size);
+
+/// P2: self-contact against two-body contact and a single field (001 §3.1).
+std::vector<VerifyRow> verify_billet(const VerifyOptions& options);
+
+/// V6: dissipated energy of a notched bar against G_f × formed crack (001 §3.3).
+std::vector<VerifyRow> verify_notched_bar(const VerifyOptions& options);
+
+/// P1: Kalthoff–Winkler crack angle and speed (000 §4.3; 001 §3.2).
+std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options);
+
 /// Observed order of convergence log(e_a/e_b)/log(h_a/h_b) between consecutive levels of one
 /// variant and metric; NaN where undefined.
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine);

@@ -1,0 +1,66 @@
+#pragma once
+// Shared driver of the verification cases that run a scene to an end time and look at the state
+// along the way.
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "fragmpm/mpm/solver.hpp"
+#include "fragmpm/pipeline/verify.hpp"
+
+namespace fragmpm::pipeline {
+
+struct TimedRun {
+  double wall_seconds = 0.0;
+  long long steps = 0;
+  double largest_dt = 0.0;  ///< [s]
+};
+
+/// Steps `solver` to `end_time` [s], calling observe(solver) after every step (or, when
+/// `observe_interval` > 0, whenever that much simulated time has passed and at the end).
+/// A numerical failure becomes std::runtime_error naming the case.
+template <class Observe>
+TimedRun run_until(mpm::Solver<2>& solver, double end_time, const std::string& case_name,
+                   double observe_interval, Observe&& observe) {
+  TimedRun run;
+  const auto start = std::chrono::steady_clock::now();
+  double next_observation = solver.time() + observe_interval;
+  while (solver.time() < end_time * (1.0 - 1e-12)) {
+    const double cap = observe_interval > 0.0 ? std::min(end_time, next_observation) : end_time;
+    if (auto failure = solver.step(cap - solver.time()))
+      throw std::runtime_error(case_name + ": numerical failure at step " +
+                               std::to_string(failure->step) + ": " + failure->what);
+    run.largest_dt = std::max(run.largest_dt, solver.last_row().dt);
+    if (observe_interval <= 0.0 || solver.time() >= next_observation * (1.0 - 1e-12) ||
+        solver.time() >= end_time * (1.0 - 1e-12)) {
+      observe(solver);
+      if (observe_interval > 0.0)
+        while (next_observation <= solver.time() * (1.0 + 1e-12)) next_observation += observe_interval;
+    }
+  }
+  run.steps = solver.step_count();
+  run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+/// A row with the level data filled in.
+inline VerifyRow level_row(const std::string& case_name, const std::string& variant, int level,
+                           double cell_size, const mpm::Solver<2>& solver, const TimedRun& run) {
+  VerifyRow r;
+  r.case_name = case_name;
+  r.variant = variant;
+  r.level = level;
+  r.cell_size = cell_size;
+  r.particles = static_cast<long long>(solver.particles().size());
+  r.dt = run.largest_dt;
+  r.steps = run.steps;
+  r.wall_seconds = run.wall_seconds;
+  return r;
+}
+
+/// |value − reference| / |reference|.
+inline double relative_error(double value, double reference) {
+  return std::abs(value - reference) / std::abs(reference);
+}
+
+}  // namespace fragmpm::pipeline
