@@ -212,7 +212,7 @@ struct Solver<D>::Impl {
     }
     const MaterialSpec& spec = problem.materials[P.material[p]];
     P.stress[p] = degrade_stress<D>(trial, d, spec.degradation);
-    return psi - d * degradable_energy<D>(model, P.F[p], spec.degradation);
+    return psi - d * std::clamp(degradable_energy<D>(model, P.F[p], spec.degradation), 0.0, psi);
   }
 
   void compute_stress_and_energy_of_initial_state() {
@@ -673,7 +673,10 @@ struct Solver<D>::Impl {
                            P.damage_history[p], P.damage[p]);
           const double psi = model.energy_density<D>(P.F[p]);
           if (P.damage[p] > 0.0) {
-            const double degradable = degradable_energy<D>(model, P.F[p], spec.degradation);
+            // ½ Σ τᵢ ln λᵢ is the exact released energy only at small strain; at large stretch it
+            // can exceed ψ itself, so it is bounded by ψ: damage never stores negative energy.
+            const double degradable =
+                std::clamp(degradable_energy<D>(model, P.F[p], spec.degradation), 0.0, psi);
             // Energy released at fixed deformation by the damage increment (secant dissipation).
             dissipated += P.volume0[p] * (P.damage[p] - damage_before) * degradable;
             strain += P.volume0[p] * (psi - P.damage[p] * degradable);

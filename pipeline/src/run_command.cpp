@@ -87,18 +87,21 @@ int execute(const RunArguments& args) {
       return 3;
     }
     const double scale = std::max(row.totals.initial_energy + std::abs(row.totals.wall_work) +
-                                      std::abs(row.totals.gravity_work),
+                                      std::abs(row.totals.gravity_work) +
+                                      std::abs(row.totals.load_work),
                                   1e-300);
     std::fprintf(stderr,
                  "fragmpm: done, %lld steps to t = %.6g s in %.2f s (%.3g particle-steps/s), %d frames "
                  "-> %s\n  energy [J/m]: kinetic %.6g, strain %.6g, wall work %.6g, gravity work %.6g, "
-                 "friction %.6g, balance error %.3g (%.2g %% of input)\n",
+                 "load work %.6g, damage dissipation %.6g, friction %.6g, balance error %.3g "
+                 "(%.2g %% of input)\n",
                  result.steps, solver.time(), result.wall_seconds,
                  result.wall_seconds > 0 ? double(result.steps) * double(solver.particles().size()) /
                                                result.wall_seconds
                                          : 0.0,
                  result.frames, file->path().c_str(), row.kinetic, row.strain, row.totals.wall_work,
-                 row.totals.gravity_work, row.totals.friction_work,
+                 row.totals.gravity_work, row.totals.load_work, row.totals.dissipated,
+                 row.totals.friction_work,
                  row.balance_error, 100.0 * std::abs(row.balance_error) / scale);
     return 0;
   } catch (const SceneError& e) {

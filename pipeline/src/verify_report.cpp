@@ -4,6 +4,8 @@
 #include <fstream>
 #include <limits>
 
+#include "fragmpm/analysis/figure_error.hpp"
+#include "fragmpm/analysis/verify_plot.hpp"
 #include "fragmpm/pipeline/verify.hpp"
 
 namespace fragmpm::pipeline {
@@ -42,7 +44,15 @@ void report_case(const std::string& directory, const std::string& case_name,
                 r.variant.c_str(), r.level, r.cell_size, r.particles, r.dt, r.steps, r.wall_seconds,
                 r.metric.c_str(), r.value, r.reference, r.error, order_text);
   }
+  csv.close();
   std::printf("written %s\n", path.c_str());
+  const std::string png = (std::filesystem::path(directory) / (case_name + ".png")).string();
+  try {
+    analysis::write_verify_plot(path, png);
+    std::printf("written %s (error versus wall time)\n", png.c_str());
+  } catch (const std::exception& e) {
+    std::printf("no error-versus-time figure for %s: %s\n", case_name.c_str(), e.what());
+  }
 }
 
 }  // namespace fragmpm::pipeline

@@ -1,0 +1,111 @@
+// Series plots of a run file (see series_figures.hpp).
+#include "fragmpm/analysis/series_figures.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "fragmpm/analysis/figure_error.hpp"
+#include "fragmpm/analysis/si_format.hpp"
+#include "fragmpm/mpm/run_file.hpp"
+
+namespace fragmpm::analysis {
+
+namespace {
+
+double largest_magnitude(const std::vector<LineSeries>& series, bool x) {
+  double m = 0.0;
+  for (const LineSeries& s : series)
+    for (double v : x ? s.x : s.y) m = std::max(m, std::abs(v));
+  return m;
+}
+
+/// Rescales x (or y) of every series to a common SI prefix; returns the prefixed unit.
+std::string rescale(std::vector<LineSeries>& series, bool x, const std::string& unit) {
+  const SiPrefix p = si_prefix(largest_magnitude(series, x));
+  for (LineSeries& s : series)
+    for (double& v : x ? s.x : s.y) v *= p.factor;
+  return p.prefix + unit;
+}
+
+/// Magnitudes of the rows of a steps × 2 dataset.
+std::vector<double> row_norms(const std::vector<double>& flat) {
+  std::vector<double> out(flat.size() / 2);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = std::hypot(flat[2 * i], flat[2 * i + 1]);
+  return out;
+}
+
+}  // namespace
+
+PlotSpec energy_plot_spec(const std::string& run_path) {
+  const std::vector<double> time = mpm::read_series(run_path, "time");
+  if (time.empty()) throw FigureError(run_path + ": /series has no rows yet (no step was recorded)");
+  PlotSpec spec;
+  spec.title = "Energy balance";
+  const std::pair<const char*, const char*> columns[] = {
+      {"kinetic", "kinetic"},          {"strain", "strain"},       {"dissipated", "dissipated (damage)"},
+      {"friction_work", "friction work"}, {"wall_work", "wall work"}, {"balance_error", "balance error"}};
+  for (const auto& [name, label] : columns) {
+    LineSeries s;
+    s.label = label;
+    s.x = time;
+    s.y = mpm::read_series(run_path, name);
+    if (s.y.size() != time.size())
+      throw FigureError(fmt::format("{}: /series/{} has {} rows but /series/time has {}", run_path, name,
+                                    s.y.size(), time.size()));
+    spec.series.push_back(std::move(s));
+  }
+  spec.x_label = fmt::format("time [{}]", rescale(spec.series, true, "s"));
+  spec.y_label = fmt::format("energy [{}]", rescale(spec.series, false, "J/m"));
+  return spec;
+}
+
+PlotSpec force_displacement_spec(const std::string& run_path, const std::vector<std::string>& wall_names) {
+  if (wall_names.empty()) throw FigureError(run_path + ": the run has no walls, so no force-displacement curve");
+  std::vector<std::vector<double>> force, travel;
+  for (const std::string& w : wall_names) {
+    force.push_back(row_norms(mpm::read_series(run_path, "wall_" + w + "_force")));
+    travel.push_back(row_norms(mpm::read_series(run_path, "wall_" + w + "_displacement")));
+    if (force.back().size() != travel.back().size())
+      throw FigureError(fmt::format("{}: wall '{}' has {} force rows but {} displacement rows", run_path, w,
+                                    force.back().size(), travel.back().size()));
+  }
+  if (force.front().empty()) throw FigureError(run_path + ": /series has no rows yet (no step was recorded)");
+  std::size_t mover = 0;
+  double farthest = 0.0;
+  for (std::size_t i = 0; i < travel.size(); ++i) {
+    const double m = *std::max_element(travel[i].begin(), travel[i].end());
+    if (m > farthest) farthest = m, mover = i;
+  }
+  PlotSpec spec;
+  if (farthest == 0.0) {
+    // No wall moves (an impact on a fixed wall): a force-displacement curve would be a vertical line,
+    // so the reactions are shown against time instead.
+    const std::vector<double> time = mpm::read_series(run_path, "time");
+    spec.title = "Wall reaction forces (no wall moves)";
+    for (std::size_t i = 0; i < wall_names.size(); ++i) {
+      if (force[i].size() != time.size())
+        throw FigureError(fmt::format("{}: wall '{}' has {} force rows but /series/time has {}", run_path,
+                                      wall_names[i], force[i].size(), time.size()));
+      spec.series.push_back(LineSeries{wall_names[i], time, force[i], false});
+    }
+    spec.x_label = fmt::format("time [{}]", rescale(spec.series, true, "s"));
+    spec.y_label = fmt::format("reaction force |F| [{}]", rescale(spec.series, false, "N/m"));
+    return spec;
+  }
+  spec.title = "Force - displacement of the walls";
+  for (std::size_t i = 0; i < wall_names.size(); ++i) {
+    LineSeries s;
+    const bool moves = *std::max_element(travel[i].begin(), travel[i].end()) > 0.0;
+    s.label = moves ? wall_names[i] : fmt::format("{} (vs {} travel)", wall_names[i], wall_names[mover]);
+    s.x = moves ? travel[i] : travel[mover];
+    s.y = force[i];
+    spec.series.push_back(std::move(s));
+  }
+  spec.x_label = fmt::format("wall displacement |u| [{}]", rescale(spec.series, true, "m"));
+  spec.y_label = fmt::format("reaction force |F| [{}]", rescale(spec.series, false, "N/m"));
+  return spec;
+}
+
+}  // namespace fragmpm::analysis
