@@ -1,4 +1,5 @@
 // The run file of DESIGN §5 on top of hdf5_io; see run_file.hpp for the layout.
+#include "fragmpm/mpm/build_info.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
 #include <algorithm>
@@ -12,7 +13,6 @@
 #include "fragmpm/mpm/xdmf.hpp"
 #include "run_file_fields.hpp"
 
-// FRAGMPM_VERSION and FRAGMPM_GIT_HASH come from the fragmpm_mpm target (mpm/CMakeLists.txt).
 
 namespace fragmpm::mpm {
 
@@ -250,8 +250,8 @@ RunFile<D> RunFile<D>::create(const std::string& path, const RunMeta& meta, bool
   const h5::Group root = impl->root();
 
   const h5::Group m = root.require_group("meta");
-  m.set_attribute("program_version", FRAGMPM_VERSION);
-  m.set_attribute("git_hash", FRAGMPM_GIT_HASH);
+  m.set_attribute("program_version", program_version());
+  m.set_attribute("git_hash", program_git_hash());
   m.set_attribute("scene_path", meta.scene_path);
   m.set_attribute("scene_text", meta.scene_text);
   m.set_attribute("unit_system", "SI; 2D quantities per unit thickness");

@@ -1,3 +1,4 @@
+#include "fragmpm/mpm/build_info.hpp"
 #include "fragmpm/pipeline/segment_file.hpp"
 
 #include <cstdint>
@@ -9,7 +10,6 @@
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
-// FRAGMPM_VERSION and FRAGMPM_GIT_HASH come from the fragmpm_mpm target (mpm/CMakeLists.txt).
 
 namespace fragmpm::pipeline {
 
@@ -73,8 +73,8 @@ void write_grain_file(const std::string& path, const Segmentation& s, const mpm:
   const h5::File file = h5::File::create(path, overwrite);
   const h5::Group root = file.root();
   root.set_attribute("format", kFormat);
-  root.set_attribute("program_version", FRAGMPM_VERSION);
-  root.set_attribute("git_hash", FRAGMPM_GIT_HASH);
+  root.set_attribute("program_version", mpm::program_version());
+  root.set_attribute("git_hash", mpm::program_git_hash());
   root.set_attribute("pixel_size", s.pixel_size);
   root.set_attribute("image_path", s.input.path);
   const cv::Rect& w = s.input.window;
