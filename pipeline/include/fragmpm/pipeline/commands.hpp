@@ -14,5 +14,6 @@ void add_run_command(CLI::App& app, CommandResult& result);
 void add_verify_command(CLI::App& app, CommandResult& result);
 void add_bench_command(CLI::App& app, CommandResult& result);
 void add_segment_command(CLI::App& app, CommandResult& result);
+void add_render_command(CLI::App& app, CommandResult& result);
 
 }  // namespace fragmpm::pipeline
