@@ -166,6 +166,13 @@ double contact_area_3d(double node_volume, double volume_a, double volume_b, dou
   return std::sqrt(2.0 * node_volume * smaller) / cell_size;  // 004 eq. 11
 }
 
+template <int D>
+double contact_area_from_gradients(const Vec<D>& gradient_a, const Vec<D>& gradient_b, const Vec<D>& normal) {
+  return std::min(std::abs(gradient_a.dot(normal)), std::abs(gradient_b.dot(normal)));
+}
+
+template double contact_area_from_gradients<2>(const Vec<2>&, const Vec<2>&, const Vec<2>&);
+template double contact_area_from_gradients<3>(const Vec<3>&, const Vec<3>&, const Vec<3>&);
 template ContactExchange<2> exchange_momentum<2>(const ContactNode<2>&, const FrictionLaw&, double,
                                                  FrictionWorkOrder);
 template ContactExchange<3> exchange_momentum<3>(const ContactNode<3>&, const FrictionLaw&, double,

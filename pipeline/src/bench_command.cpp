@@ -50,14 +50,14 @@ struct BenchCase {
 };
 
 
-mpm::Problem<2> elastic_block(long long target_particles) {
+mpm::Problem<2> bench_block(const std::string& scene, long long target_particles) {
   // 2×2 particles per cell over a 100 mm square block: N = 4 (0.1/h)².
   const double cells = std::round(std::sqrt(double(target_particles) / 4.0));
   const double cell_size = 0.1 / cells;
   mpm::Problem<2> problem = parse_scene(
-      with_overrides(embedded_scene("bench/elastic-block.toml"),
+      with_overrides(embedded_scene("bench/" + scene + ".toml"),
                      {{"grid.cell_size", toml_number(cell_size)}}),
-      "scenes/bench/elastic-block.toml");
+      "scenes/bench/" + scene + ".toml");
   for (std::size_t p = 0; p < problem.particles.size(); ++p) {
     const mpm::Vec<2>& x = problem.particles.x[p];
     problem.particles.v[p] = mpm::Vec<2>(0.5 * std::sin(std::numbers::pi * x[1] / 0.1),
@@ -75,14 +75,17 @@ int execute(bool quick, std::vector<int> thread_counts) {
     if (omp_get_num_procs() > 1) thread_counts.push_back(std::min(2, omp_get_num_procs()));
   }
   const std::size_t triad_elements = quick ? (std::size_t(1) << 22) : (std::size_t(1) << 24);
-  std::printf("fragmpm bench%s: elastic block, CPDI, 2x2 particles per cell, %d core(s)\n",
+  std::printf("fragmpm bench%s: elastic block (one field) and the same block as two touching bodies "
+              "(partitioned contact), CPDI, 2x2 particles per cell, %d core(s)\n",
               quick ? " --quick" : "", omp_get_num_procs());
-  std::printf("%-14s %9s %7s %6s %9s %14s %12s %16s\n", "scene", "particles", "threads", "steps",
+  std::printf("%-18s %9s %7s %6s %9s %14s %12s %16s\n", "scene", "particles", "threads", "steps",
               "wall [s]", "particle-steps/s", "triad [GB/s]", "bytes/particle-step");
   for (const BenchCase& c : cases) {
     for (int threads : thread_counts) {
+     double elastic_rate = 0.0;
+     for (const std::string scene : {"elastic-block", "partitioned-block"}) {
       omp_set_num_threads(threads);
-      mpm::Solver<2> solver(elastic_block(c.target_particles));
+      mpm::Solver<2> solver(bench_block(scene, c.target_particles));
       if (auto failure = solver.step()) {  // warm-up: first touch of the grid and buffers
         std::fprintf(stderr, "bench: %s\n", failure->what.c_str());
         return 3;
@@ -96,10 +99,14 @@ int execute(bool quick, std::vector<int> thread_counts) {
       const double wall = std::chrono::duration<double>(Clock::now() - start).count();
       const double rate = double(solver.particles().size()) * c.steps / wall;
       const double bandwidth = triad_bandwidth(threads, triad_elements, quick ? 3 : 5);
-      std::printf("%-14s %9zu %7d %6d %9.3f %14.4g %12.2f %16.1f\n", "elastic-block",
+      std::printf("%-18s %9zu %7d %6d %9.3f %14.4g %12.2f %16.1f", scene.c_str(),
                   solver.particles().size(), threads, c.steps, wall, rate, bandwidth,
                   bandwidth * 1e9 / rate);
+      if (scene == "elastic-block") elastic_rate = rate;
+      else std::printf("   partitioning cost +%.0f %% per particle-step", 100.0 * (elastic_rate / rate - 1.0));
+      std::printf("\n");
       std::fflush(stdout);
+     }
     }
   }
   std::printf("bytes/particle-step = triad bandwidth / particle-step rate: the memory traffic one "

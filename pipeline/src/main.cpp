@@ -16,6 +16,9 @@ int main(int argc, char** argv) {
   fragmpm::pipeline::add_bench_command(app, result);
   fragmpm::pipeline::add_segment_command(app, result);
   fragmpm::pipeline::add_render_command(app, result);
+  fragmpm::pipeline::add_analyze_command(app, result);
+  fragmpm::pipeline::add_pipeline_command(app, result);
+  fragmpm::pipeline::add_demo_command(app, result);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

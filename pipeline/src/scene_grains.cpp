@@ -46,6 +46,8 @@ std::string resolve(const std::string& path, const std::string& scene_path) {
   return (std::filesystem::path(scene_path).parent_path() / p).lexically_normal().string();
 }
 
+}  // namespace
+
 SegmentOptions read_segment_options(const Section& b, const std::string& image_path) {
   SegmentOptions o;
   o.image_path = image_path;
@@ -93,6 +95,8 @@ SegmentOptions read_segment_options(const Section& b, const std::string& image_p
   classes("boundary_classes", o.classes.boundary_classes);
   return o;
 }
+
+namespace {
 
 /// The key an error of the segmentation is about.
 std::string_view key_of_segment_error(const Section& b, const std::string& message) {

@@ -13,6 +13,7 @@
 #include "fragmpm/mpm/run_file.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/scene_shapes.hpp"
+#include "scene_fracture.hpp"
 #include "scene_grains.hpp"
 #include "scene_toml.hpp"
 #include "scene_validate.hpp"
@@ -92,8 +93,11 @@ void read_time(const Section& t, mpm::TimeSpec& time) {
     t.expected("pic_fraction", "a PIC fraction 0 <= pic_fraction <= 1 (000 eq. 64)");
 }
 
-mpm::MaterialSpec read_material(const Section& m) {
-  m.allow_only({"name", "model", "E", "nu", "K", "G", "density"});
+mpm::MaterialSpec read_material(const Section& m, std::optional<double> thickness, const mpm::GridSpec<2>& grid,
+                                double particle_spacing) {
+  std::vector<std::string_view> keys = {"name", "model", "E", "nu", "K", "G", "density"};
+  keys.insert(keys.end(), damage_keys().begin(), damage_keys().end());
+  m.allow_only(keys);
   mpm::MaterialSpec spec;
   spec.name = m.name("name");
   const std::string model = m.optional_string("model").value_or("neo-hookean");
@@ -118,6 +122,7 @@ mpm::MaterialSpec read_material(const Section& m) {
   }
   spec.density = m.quantity("density", QK::density);
   if (!(spec.density > 0.0)) m.expected("density", "a positive density");
+  read_damage(m, spec, thickness, grid, particle_spacing);
   return spec;
 }
 
@@ -224,11 +229,10 @@ mpm::WallSpec<2> read_wall(const Section& w) {
   else if (kind == "roller") wall.kind = mpm::WallKind::roller;
   else if (kind == "fixed") wall.kind = mpm::WallKind::fixed;
   else w.expected("kind", "one of \"contact\", \"roller\", \"fixed\"");
-  if (auto mu = w.optional_number("friction")) {
+  if (w.has("friction")) {
     if (wall.kind != mpm::WallKind::contact)
       w.fail("friction", "expected no friction for kind = \"" + kind + "\" (friction applies to contact walls only)");
-    if (!(*mu >= 0.0)) w.expected("friction", "a Coulomb friction coefficient >= 0");
-    wall.friction = mpm::CoulombFriction{*mu};
+    wall.friction = read_friction(w, "friction");
   }
   if (auto h = w.optional_table("velocity")) wall.velocity = read_history(*h);
   return wall;
@@ -334,7 +338,7 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
                          std::string(e.description()));
   }
   const Section top(root, "", path);
-  top.allow_only({"grid", "time", "physics", "materials", "bodies", "walls", "stop", "output"});
+  top.allow_only({"grid", "time", "physics", "materials", "bodies", "walls", "contact", "loads", "stop", "output"});
 
   mpm::Problem<2> problem;
   problem.scene_path = path;
@@ -343,14 +347,18 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   const int per_cell = read_grid(top.table("grid"), problem.grid);
   const std::optional<Section> time = top.optional_table("time");
   if (time) read_time(*time, problem.time);
+  std::optional<double> thickness;  // out-of-plane thickness, only for Weibull volumes in 2D
   if (auto physics = top.optional_table("physics")) {
-    physics->allow_only({"gravity"});
+    physics->allow_only({"gravity", "thickness"});
     problem.gravity = physics->optional_vector("gravity", QK::acceleration).value_or(Vec2::Zero());
+    thickness = physics->optional_quantity("thickness", QK::length);
+    if (thickness && !(*thickness > 0.0)) physics->expected("thickness", "a positive out-of-plane thickness");
   }
 
   NameRegistry material_names("material");
-  for (const Section& m : top.array_of_tables("materials", true)) {
-    problem.materials.push_back(read_material(m));
+  const std::vector<Section> material_sections = top.array_of_tables("materials", true);
+  for (const Section& m : material_sections) {
+    problem.materials.push_back(read_material(m, thickness, problem.grid, problem.grid.cell_size / per_cell));
     material_names.add(m, problem.materials.back().name);
   }
 
@@ -398,6 +406,7 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
     problem.walls.push_back(read_wall(w));
     wall_names.add(w, problem.walls.back().name);
   }
+  if (auto contact = top.optional_table("contact")) problem.contact = read_contact(*contact);
 
   if (!top.has("stop"))
     top.fail("stop", "missing required table [stop]: expected at least one of end_time, max_steps, platen_displacement");
@@ -414,6 +423,18 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   for (auto& id : problem.particles.body) id = shape_body_id[static_cast<std::size_t>(id)];
   for (std::size_t g = 0; g < grain_entries.size(); ++g)
     append_particles(problem.particles, grain_entries[g].bodies.particles, grain_first_id[g]);
+  assign_strengths(problem, material_sections);
+
+  // Loads name a body, or an image/grain entry for all of its grains.
+  std::map<std::string, std::vector<std::int32_t>> load_bodies;
+  for (std::size_t b = 0; b < problem.body_names.size(); ++b)
+    load_bodies[problem.body_names[b]].push_back(static_cast<std::int32_t>(b));
+  for (std::size_t g = 0; g < grain_entries.size(); ++g)
+    for (std::size_t k = 0; k < grain_entries[g].body_names.size(); ++k)
+      load_bodies[grain_entries[g].name].push_back(grain_first_id[g] + static_cast<std::int32_t>(k));
+  const std::vector<Section> load_sections = top.array_of_tables("loads", false);
+  for (std::size_t i = 0; i < load_sections.size(); ++i)
+    problem.loads.push_back(read_load(load_sections[i], i, problem, load_bodies));
 
   if (time) check_fixed_dt(problem, *time);
   return problem;

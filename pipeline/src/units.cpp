@@ -101,16 +101,19 @@ Dims kind_dims(QuantityKind k) {
     case QuantityKind::specific_heat: return dims(2, 0, -2, -1);
     case QuantityKind::conductivity: return dims(1, 1, -3, -1);
     case QuantityKind::expansion: return dims(0, 0, 0, -1);
+    case QuantityKind::volume: return dims(3, 0, 0);
+    case QuantityKind::inverse_velocity: return dims(-1, 0, 1);
   }
   return {};
 }
 
-constexpr std::array<QuantityKind, 15> kAllKinds = {
+constexpr std::array<QuantityKind, 17> kAllKinds = {
     QuantityKind::length,          QuantityKind::time,          QuantityKind::mass,
     QuantityKind::density,         QuantityKind::pressure,      QuantityKind::velocity,
     QuantityKind::acceleration,    QuantityKind::frequency,     QuantityKind::angle,
     QuantityKind::angular_velocity, QuantityKind::temperature,  QuantityKind::energy_per_area,
-    QuantityKind::specific_heat,   QuantityKind::conductivity,  QuantityKind::expansion};
+    QuantityKind::specific_heat,   QuantityKind::conductivity,  QuantityKind::expansion,
+    QuantityKind::volume,          QuantityKind::inverse_velocity};
 
 /// "a length" / "kg m^-1 s^-2" — how a found unit is described in an error.
 std::string describe_dims(const Dims& d) {
@@ -151,6 +154,8 @@ std::string_view example(QuantityKind kind) {
     case QuantityKind::specific_heat: return "800 J/(kg K)";
     case QuantityKind::conductivity: return "1.5 W/(m K)";
     case QuantityKind::expansion: return "8e-6 1/K";
+    case QuantityKind::volume: return "1 mm3";
+    case QuantityKind::inverse_velocity: return "0.1 s/m";
   }
   return "";
 }
@@ -320,6 +325,8 @@ std::string_view kind_name(QuantityKind kind) {
     case QuantityKind::specific_heat: return "specific heat";
     case QuantityKind::conductivity: return "thermal conductivity";
     case QuantityKind::expansion: return "thermal expansion coefficient";
+    case QuantityKind::volume: return "volume";
+    case QuantityKind::inverse_velocity: return "inverse velocity";
   }
   return "quantity";
 }
@@ -341,6 +348,8 @@ std::string_view si_unit(QuantityKind kind) {
     case QuantityKind::specific_heat: return "J/(kg K)";
     case QuantityKind::conductivity: return "W/(m K)";
     case QuantityKind::expansion: return "1/K";
+    case QuantityKind::volume: return "m3";
+    case QuantityKind::inverse_velocity: return "s/m";
   }
   return "";
 }

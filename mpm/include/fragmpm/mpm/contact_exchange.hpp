@@ -71,4 +71,16 @@ double contact_area_2d(double node_volume, double volume_a, double volume_b, dou
 /// The 3D form of 004 eq. 11 (t dropped): A_c = √(2 Ω_i min(Ω_a, Ω_b)) / h⊥ with volumes [m³]; [m²].
 double contact_area_3d(double node_volume, double volume_a, double volume_b, double cell_size);
 
+/// Contact area at a node from the fields' domain gradients g_j = Σ_p G_ip V_p (004 eq. 6):
+/// A_c = min(|g_a·n|, |g_b·n|) [m per unit thickness in 2D (multiply by t), m² in 3D].
+/// Why: by the divergence theorem g_j = ∫_{Ω_j} ∇S_i dV = ∮_{∂Ω_j} S_i n dS, so g_j·n is the
+/// shape-function-weighted measure of field j's boundary facing along n: the interface's tributary
+/// area at node i plus any free surface of j with the same orientation, which only adds. The smaller
+/// of the two is the interface's. Exact (for GIMP/CPDI weights) for a straight interface at any offset
+/// from the node, where eq. 11 is exact too, and also where the interface ends inside the node's
+/// support (e.g. under the edge of a sliding block), where eq. 11 over-estimates by √((1+f)/(2f))
+/// for a covered fraction f. Not in the seeds: our alternative to eq. 11.
+template <int D>
+double contact_area_from_gradients(const Vec<D>& gradient_a, const Vec<D>& gradient_b, const Vec<D>& normal);
+
 }  // namespace fragmpm::mpm

@@ -15,5 +15,8 @@ void add_verify_command(CLI::App& app, CommandResult& result);
 void add_bench_command(CLI::App& app, CommandResult& result);
 void add_segment_command(CLI::App& app, CommandResult& result);
 void add_render_command(CLI::App& app, CommandResult& result);
+void add_analyze_command(CLI::App& app, CommandResult& result);
+void add_pipeline_command(CLI::App& app, CommandResult& result);
+void add_demo_command(CLI::App& app, CommandResult& result);
 
 }  // namespace fragmpm::pipeline

@@ -31,6 +31,8 @@ enum class QuantityKind {
   specific_heat,     ///< J/(kg K)
   conductivity,      ///< W/(m K)
   expansion,         ///< 1/K
+  volume,            ///< m3 (Weibull reference volume)
+  inverse_velocity,  ///< s/m (slope of velocity-dependent friction)
 };
 
 /// The quantity string could not be read or has the wrong kind of unit. The message says what was

@@ -1,0 +1,290 @@
+// `fragmpm analyze` as a function (see analyze.hpp): read the run file, label and measure the
+// fragments of the chosen frames, summarise every frame, and write tables, figures and run-file groups.
+#include "fragmpm/pipeline/analyze.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "analyze_frames.hpp"
+#include "fragmpm/analysis/figure_error.hpp"
+#include "fragmpm/analysis/fragment_figures.hpp"
+#include "fragmpm/analysis/si_format.hpp"
+#include "fragmpm/mpm/hdf5_io.hpp"
+
+namespace fragmpm::pipeline {
+
+namespace fs = std::filesystem;
+using namespace analyze_detail;
+
+namespace {
+
+constexpr const char* kWrittenBy = "fragmpm analyze";
+
+void say(std::FILE* log, const std::string& line) {
+  if (log) std::fprintf(log, "%s\n", line.c_str());
+}
+
+std::string frame_label(const AnalyzedFrame& f) {
+  std::string label = fmt::format("t = {}", analysis::format_si(f.time, "s", 3));
+  if (std::isfinite(f.platen_displacement))
+    label += fmt::format(", u = {}", analysis::format_si(f.platen_displacement, "m", 3));
+  return label;
+}
+
+std::string describe(const analysis::FrameFragments& r) {
+  const analysis::FragmentSummary& s = r.summary;
+  std::string text = fmt::format("{} fragments + {} fines ({} particles), {} particles masked", s.fragments, s.fines,
+                                 s.fine_particles, s.masked_particles);
+  if (s.fragments > 0)
+    text += fmt::format("; mean equivalent diameter {} (mass-weighted {}, largest {})",
+                        analysis::format_si(s.mean_equivalent_diameter, "m", 3),
+                        analysis::format_si(s.mass_mean_equivalent_diameter, "m", 3),
+                        analysis::format_si(s.largest_equivalent_diameter, "m", 3));
+  text += r.raster_checked ? "\n      " + r.raster.summary() : "\n      raster check skipped: " + r.raster_note;
+  return text;
+}
+
+/// The /fragments/ groups this analysis will write that exist already: fine (and listed) when an
+/// earlier analyze wrote them, refused otherwise.
+std::vector<std::string> groups_to_replace(const mpm::h5::File& file, const std::string& path,
+                                           const std::vector<std::string>& names) {
+  std::vector<std::string> replace;
+  const mpm::h5::Group root = file.root();
+  for (const std::string& name : names) {
+    if (!root.exists(name)) continue;
+    if (!root.is_group(name) || !root.open_group(name).has_attribute("written_by") ||
+        root.open_group(name).attribute_string("written_by") != kWrittenBy)
+      throw AnalyzeError(fmt::format("{}: /{} exists and was not written by fragmpm analyze; refusing to replace "
+                                     "it (use --csv-only to leave the run file alone)",
+                                     path, name));
+    replace.push_back(name);
+  }
+  return replace;
+}
+
+void set_options(const mpm::h5::Group& g, const analysis::FragmentOptions& o) {
+  g.set_attribute("written_by", kWrittenBy);
+  g.set_attribute("d_mask", o.d_mask);
+  g.set_attribute("min_particles", static_cast<std::int64_t>(o.min_particles));
+  g.set_attribute("reference_reach", o.reference_reach);
+  g.set_attribute("current_reach", o.current_reach);
+}
+
+void write_run_groups(const AnalyzeOptions& o, const AnalyzeResult& r) {
+  mpm::h5::File file = [&] {
+    try {
+      return mpm::h5::File::open(o.run_path, true);
+    } catch (const mpm::RunFileError& e) {
+      throw AnalyzeError(fmt::format("cannot write the fragment tables into the run file ({}); the CSV files are "
+                                     "written; use --csv-only to skip the run file",
+                                     e.what()));
+    }
+  }();
+  const mpm::h5::Group root = file.root();
+  for (const AnalyzedFrame& f : r.frames) {
+    const std::string name = fmt::format("fragments/{:06d}", f.frame);
+    if (root.exists(name)) root.remove(name);
+    const mpm::h5::Group g = root.require_group(name);
+    set_options(g, o.fragments);
+    g.set_attribute("frame", static_cast<std::int64_t>(f.frame));
+    g.set_attribute("time", f.time);
+    g.set_attribute("step", static_cast<std::int64_t>(f.step));
+    g.set_attribute("request", f.request);
+    if (!r.platen.empty()) {
+      g.set_attribute("platen", r.platen);
+      g.set_attribute("platen_displacement", f.platen_displacement);
+    }
+    const analysis::FragmentSummary& s = f.fragments.summary;
+    g.set_attribute("fragments", static_cast<std::int64_t>(s.fragments));
+    g.set_attribute("fines", static_cast<std::int64_t>(s.fines));
+    g.set_attribute("fine_particles", static_cast<std::int64_t>(s.fine_particles));
+    g.set_attribute("masked_particles", static_cast<std::int64_t>(s.masked_particles));
+    g.set_attribute("fines_mass", s.fines_mass);
+    g.set_attribute("fines_area", s.fines_area);
+    g.set_attribute("raster_check", f.fragments.raster_checked ? f.fragments.raster.summary()
+                                                               : "skipped: " + f.fragments.raster_note);
+    analysis::write_fragment_datasets(g, f.fragments);
+  }
+  if (root.exists("fragments/series")) root.remove("fragments/series");
+  const mpm::h5::Group series = root.require_group("fragments/series");
+  set_options(series, o.fragments);
+  if (!r.platen.empty()) series.set_attribute("platen", r.platen);
+  analysis::write_fragment_series_datasets(series, r.series, !r.platen.empty());
+  file.flush();
+}
+
+void write_figures(const AnalyzeResult& r, std::vector<std::string>& files, std::FILE* log) {
+  std::vector<analysis::CdfCurve> curves;
+  for (const AnalyzedFrame& f : r.frames) {
+    curves.push_back({frame_label(f), f.fragments.equivalent_diameter});
+  }
+  std::vector<analysis::CdfCurve> roundness;
+  for (const AnalyzedFrame& f : r.frames) roundness.push_back({frame_label(f), f.fragments.roundness});
+  using analysis::CdfQuantity;
+  using analysis::CdfWeighting;
+  struct Figure {
+    const char* file;
+    std::function<analysis::PlotSpec()> spec;
+  };
+  const Figure figures[] = {
+      {"cdf_equivalent_diameter.png",
+       [&] { return analysis::cdf_plot_spec(curves, CdfQuantity::equivalent_diameter, CdfWeighting::number); }},
+      {"cdf_equivalent_diameter_mass.png",
+       [&] { return analysis::cdf_plot_spec(curves, CdfQuantity::equivalent_diameter, CdfWeighting::mass); }},
+      {"cdf_roundness.png",
+       [&] { return analysis::cdf_plot_spec(roundness, CdfQuantity::roundness, CdfWeighting::number); }},
+      {"cdf_roundness_mass.png",
+       [&] { return analysis::cdf_plot_spec(roundness, CdfQuantity::roundness, CdfWeighting::mass); }},
+      {"fragment_count.png", [&] { return analysis::fragment_count_spec(r.series); }},
+      {"fragment_size.png", [&] { return analysis::fragment_size_spec(r.series); }},
+  };
+  for (const Figure& f : figures) {
+    const std::string path = (fs::path(r.output_dir) / f.file).string();
+    try {
+      analysis::write_line_plot(f.spec(), path);
+      files.push_back(path);
+    } catch (const analysis::FigureError& e) {
+      say(log, fmt::format("  figure {} skipped: {}", f.file, e.what()));
+    }
+  }
+}
+
+}  // namespace
+
+AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
+  try {
+    analysis::validate(o.fragments);
+  } catch (const std::invalid_argument& e) {
+    throw AnalyzeError(e.what());
+  }
+  const std::string& path = o.run_path;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw AnalyzeError(path + ": no such file");
+  if (fs::is_directory(path, ec)) throw AnalyzeError(path + ": is a directory, not a run file");
+
+  AnalyzeResult result;
+  result.output_dir = o.output_dir;
+  if (result.output_dir.empty()) {
+    const fs::path p(path);
+    result.output_dir = (p.parent_path() / (p.stem().string() + "_fragments")).string();
+  }
+  {
+    mpm::h5::File file = [&] {
+      try {
+        return mpm::h5::File::open(path, false);
+      } catch (const mpm::RunFileError& e) {
+        throw AnalyzeError(fmt::format("{}: not a FragMPM run file ({})", path, e.what()));
+      }
+    }();
+    const RunIndex run = read_run_index(file, path);
+    std::vector<std::string> moving;
+    result.platen = choose_platen(file, run, o.platen, moving);
+    const std::vector<double> travel = result.platen.empty() ? std::vector<double>{}
+                                                             : platen_travel(file, run, result.platen);
+    const std::vector<Selected> selection = select_frames(o, run, travel, moving);
+
+    if (o.write_run_file) {
+      std::vector<std::string> names{"fragments/series"};
+      for (const Selected& s : selection) names.push_back(fmt::format("fragments/{:06d}", run.frames[s.position].index));
+      for (const std::string& name : groups_to_replace(file, path, names)) result.replaced_groups.push_back("/" + name);
+    }
+    fs::create_directories(result.output_dir, ec);
+    if (ec || !fs::is_directory(result.output_dir))
+      throw AnalyzeError(fmt::format("{}: cannot create the output directory ({})", result.output_dir, ec.message()));
+
+    const FrameInfo& first = run.frames.front();
+    const mpm::Particles<2> reference = read_analysis_frame(file, run, first.index);
+    say(log, fmt::format("fragmpm analyze: {} ({} particles, {} frames; reference configuration: frame {} at t = {}{})",
+                         path, reference.size(), run.frames.size(), first.index, analysis::format_si(first.time, "s", 4),
+                         result.platen.empty() ? "" : fmt::format("; platen: wall '{}'", result.platen)));
+    say(log, fmt::format("  mask d >= {}, fines below {} particles", o.fragments.d_mask, o.fragments.min_particles));
+
+    std::size_t next = 0;  // next entry of `selection`
+    for (std::size_t k = 0; k < run.frames.size(); ++k) {
+      const FrameInfo& info = run.frames[k];
+      const mpm::Particles<2> current = k == 0 ? reference : read_analysis_frame(file, run, info.index);
+      if (current.size() != reference.size())
+        throw AnalyzeError(fmt::format("{}: {} has {} particles but the reference frame {} has {}", path,
+                                       frame_group(info.index), current.size(), first.index, reference.size()));
+      analysis::FragmentSeriesPoint point;
+      point.frame = info.index;
+      point.step = info.step;
+      point.time = info.time;
+      point.platen_displacement = travel.empty() ? std::numeric_limits<double>::quiet_NaN() : travel[k];
+      try {
+      if (next < selection.size() && selection[next].position == k) {
+        AnalyzedFrame f;
+        f.frame = info.index;
+        f.step = info.step;
+        f.time = info.time;
+        f.platen_displacement = point.platen_displacement;
+        f.request = selection[next].request;
+        f.fragments = analysis::analyze_fragments(reference, current, o.fragments);
+        point.summary = f.fragments.summary;
+        say(log, fmt::format("  {} -> frame {} (t = {}, step {}{}): {}", f.request, f.frame,
+                             analysis::format_si(f.time, "s", 4), f.step,
+                             std::isfinite(f.platen_displacement)
+                                 ? fmt::format(", platen displacement {}", analysis::format_si(f.platen_displacement, "m", 4))
+                                 : "",
+                             describe(f.fragments)));
+        result.frames.push_back(std::move(f));
+        ++next;
+      } else {
+        point.summary = analysis::summarize_fragments(current, analysis::label_fragments(reference, current, o.fragments));
+      }
+      } catch (const std::invalid_argument& e) {
+        throw AnalyzeError(fmt::format("{}: {}: {}", path, frame_group(info.index), e.what()));
+      }
+      result.series.push_back(point);
+    }
+  }
+
+  // Tables.
+  const fs::path dir(result.output_dir);
+  for (const AnalyzedFrame& f : result.frames) {
+    const std::string n = fmt::format("{:06d}", f.frame);
+    const bool theta = f.fragments.has_temperature;
+    const std::string files[] = {(dir / ("fragments_" + n + ".csv")).string(), (dir / ("fines_" + n + ".csv")).string(),
+                                 (dir / ("cdf_equivalent_diameter_" + n + ".csv")).string(),
+                                 (dir / ("cdf_roundness_" + n + ".csv")).string()};
+    try {
+      analysis::write_fragment_csv(files[0], f.fragments.fragments, theta);
+      analysis::write_fragment_csv(files[1], f.fragments.fines, theta);
+      analysis::write_cdf_csv(files[2], f.fragments.equivalent_diameter, "equivalent_diameter_m");
+      analysis::write_cdf_csv(files[3], f.fragments.roundness, "roundness");
+    } catch (const std::runtime_error& e) {
+      throw AnalyzeError(e.what());
+    }
+    for (const std::string& file : files) result.files.push_back(file);
+  }
+  const std::string series_csv = (dir / "fragment_series.csv").string();
+  try {
+    analysis::write_fragment_series_csv(series_csv, result.series, !result.platen.empty());
+  } catch (const std::runtime_error& e) {
+    throw AnalyzeError(e.what());
+  }
+  result.files.push_back(series_csv);
+  say(log, fmt::format("  tables ({} frames) and the count / size series over {} frames -> {}", result.frames.size(),
+                       result.series.size(), result.output_dir));
+  if (o.figures) {
+    const std::size_t before = result.files.size();
+    write_figures(result, result.files, log);
+    if (result.files.size() > before) say(log, fmt::format("  {} figures -> {}", result.files.size() - before, result.output_dir));
+  }
+  if (o.write_run_file) {
+    write_run_groups(o, result);
+    for (const AnalyzedFrame& f : result.frames)
+      say(log, fmt::format("  run file: /fragments/{:06d} written", f.frame));
+    say(log, "  run file: /fragments/series written");
+    for (const std::string& g : result.replaced_groups)
+      say(log, fmt::format("  run file: {} replaced the group of an earlier analyze", g));
+  }
+  return result;
+}
+
+}  // namespace fragmpm::pipeline

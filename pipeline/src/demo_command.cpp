@@ -1,0 +1,105 @@
+// `fragmpm demo [-o DIR]` (issue 6 item 5): the pipeline on the embedded scene
+// scenes/demo/sandstone-crush.toml and the Miocene sandstone grain mask. The scene is compiled into
+// the program; the image is found on disk, first under $FRAGMPM_SOURCE_DIR/images, then in an
+// images/ folder beside the executable or any folder above it (./build/fragmpm of a clone finds
+// <clone>/images), then in the working directory or any folder above it.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "fragmpm/mpm/run_file.hpp"
+#include "fragmpm/pipeline/commands.hpp"
+#include "fragmpm/pipeline/embedded_scenes.hpp"
+#include "fragmpm/pipeline/pipeline_job.hpp"
+
+namespace fragmpm::pipeline {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* demo_scene = "demo/sandstone-crush.toml";
+constexpr const char* demo_image = "images/miocene_sandstone_window.png";
+
+/// The demo image, or PipelineError listing where it was looked for.
+std::string find_demo_image() {
+  std::vector<fs::path> roots;
+  if (const char* env = std::getenv("FRAGMPM_SOURCE_DIR"); env && *env) roots.emplace_back(env);
+  std::error_code ec;
+  auto add_ancestors = [&](fs::path p) {
+    for (; !p.empty(); p = p.parent_path()) {
+      roots.push_back(p);
+      if (p == p.root_path()) break;
+    }
+  };
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) add_ancestors(exe.parent_path());
+  const fs::path cwd = fs::current_path(ec);
+  if (!ec) add_ancestors(cwd);
+  for (const fs::path& root : roots)
+    if (fs::is_regular_file(root / demo_image, ec)) return (root / demo_image).string();
+  throw PipelineError(fmt::format("cannot find {} (the demo's micrograph): looked under $FRAGMPM_SOURCE_DIR, the "
+                                  "folders above the executable and above the working directory; set "
+                                  "FRAGMPM_SOURCE_DIR to the FragMPM source tree",
+                                  demo_image));
+}
+
+struct DemoArguments {
+  std::string output = "fragmpm-demo";
+  bool overwrite = false;
+  int threads = 0;
+  bool quiet = false;
+};
+
+int execute(const DemoArguments& a) {
+  try {
+    PipelineOptions o;
+    o.image = find_demo_image();
+    o.scene_text = embedded_scene(demo_scene);
+    o.scene_path = std::string("scenes/") + demo_scene;
+    o.output_dir = a.output;
+    o.overwrite = a.overwrite;
+    o.threads = a.threads;
+    o.progress = !a.quiet;
+    std::fprintf(stderr, "fragmpm demo: %s (embedded) on %s -> %s/\n", o.scene_path.c_str(), o.image.c_str(),
+                 a.output.c_str());
+    const PipelineResult r = run_pipeline(o, stderr);
+    const fs::path dir(a.output);
+    std::printf("fragmpm demo: everything is in %s/\n", a.output.c_str());
+    std::printf("  segmentation preview   %s\n", (dir / "segmentation.png").string().c_str());
+    std::printf("  run file (+ XDMF)      %s (%s)\n", r.run_path.c_str(), (dir / "run.xmf").string().c_str());
+    std::printf("  fragment tables, CDFs  %s/\n", (dir / "fragments").string().c_str());
+    std::printf("  field and series figs  %s/\n", (dir / "figures").string().c_str());
+    std::printf("  summary                %s\n\n%s", r.summary_path.c_str(), r.summary.c_str());
+    return r.exit_code;
+  } catch (const PipelineError& e) {
+    std::fprintf(stderr, "fragmpm demo: %s\n", e.what());
+    return 2;
+  } catch (const mpm::RunFileError& e) {
+    std::fprintf(stderr, "fragmpm demo: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fragmpm demo: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace
+
+void add_demo_command(CLI::App& app, CommandResult& result) {
+  auto args = std::make_shared<DemoArguments>();
+  CLI::App* cmd = app.add_subcommand(
+      "demo", "The main job on built-in data: a window of a sandstone grain mask crushed between platens, with "
+              "segmentation preview, run file, fragment tables, figures and summary (the pipeline command)");
+  cmd->add_option("-o,--output", args->output, "Output directory (default: fragmpm-demo)");
+  cmd->add_flag("--overwrite", args->overwrite, "Write into an existing non-empty directory");
+  cmd->add_option("--threads", args->threads, "OpenMP threads (default: all cores)");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress line");
+  cmd->callback([args, &result] { result.exit_code = execute(*args); });
+}
+
+}  // namespace fragmpm::pipeline

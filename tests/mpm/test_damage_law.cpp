@@ -1,0 +1,313 @@
+// Damage laws against their closed forms: Rankine linear softening (000 eq. 19-21) along uniaxial
+// tension, the fracture energy of one softening element, the snap-back limit, degradation of the
+// stress (001 eq. 26-27; 000 eq. 7), time to failure (001 eq. 24) and Weibull strengths (001 eq. 25).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "fragmpm/mpm/damage_law.hpp"
+
+namespace mpm = fragmpm::mpm;
+
+namespace {
+
+// A glass-like material: E = 70 GPa, ν = 0.22, σ_f = 50 MPa, G_f = 10 J/m².
+constexpr double kE = 70e9, kNu = 0.22, kStrength = 50e6, kGf = 10.0;
+
+mpm::NeoHookean glass() {
+  return {kE / (3.0 * (1.0 - 2.0 * kNu)), kE / (2.0 * (1.0 + kNu))};
+}
+
+mpm::RankineSoftening rankine() { return {kGf, kE}; }
+
+/// Uniaxial stress in 3D: F = diag(1 + ε, λ, λ) with λ chosen (Newton) so that the lateral stress of
+/// the undamaged material vanishes. Damage does not move the lateral stress off zero (a zero
+/// principal stress is neither scaled nor kept differently), so this is also the damaged path.
+mpm::Mat<3> uniaxial_F(const mpm::NeoHookean& m, double strain) {
+  double lambda = 1.0 - kNu * strain;
+  for (int it = 0; it < 50; ++it) {
+    auto lateral = [&](double l) {
+      mpm::Mat<3> F = mpm::Mat<3>::Identity();
+      F(0, 0) = 1.0 + strain;
+      F(1, 1) = F(2, 2) = l;
+      return m.cauchy<3>(F)(1, 1);
+    };
+    const double f = lateral(lambda), dl = 1e-7;
+    const double df = (lateral(lambda + dl) - lateral(lambda - dl)) / (2.0 * dl);
+    const double step = f / df;
+    lambda -= step;
+    if (std::abs(step) < 1e-15) break;
+  }
+  mpm::Mat<3> F = mpm::Mat<3>::Identity();
+  F(0, 0) = 1.0 + strain;
+  F(1, 1) = F(2, 2) = lambda;
+  return F;
+}
+
+}  // namespace
+
+TEST(DamageLaw, SofteningModulusAndSnapBackLimit) {
+  const double Hbar = kStrength * kStrength / (2.0 * kE * kGf);  // 000 eq. (21): 1785.7 1/m
+  const double l = 0.4e-3;
+  EXPECT_NEAR(mpm::rankine_softening_modulus(kStrength, rankine(), l), Hbar * l / (1.0 - Hbar * l), 1e-12);
+
+  // Largest cell: H̄ h √D = 1 → h = 2 E G_f / (σ_f² √D).
+  for (int D : {2, 3}) {
+    const double h_max = mpm::rankine_largest_cell_size(kStrength, rankine(), D);
+    EXPECT_NEAR(h_max, 2.0 * kE * kGf / (kStrength * kStrength * std::sqrt(D)), 1e-15);
+    const double l_ok = 0.999 * h_max * std::sqrt(D), l_bad = h_max * std::sqrt(D);
+    EXPECT_GT(mpm::rankine_softening_modulus(kStrength, rankine(), l_ok), 0.0);
+    EXPECT_TRUE(std::isnan(mpm::rankine_softening_modulus(kStrength, rankine(), l_bad)));
+    EXPECT_TRUE(std::isnan(mpm::rankine_softening_modulus(kStrength, rankine(), 2.0 * l_bad)));
+  }
+  // 2D: h_max = 1/(H̄ √2) = 0.396 mm for this glass.
+  EXPECT_NEAR(mpm::rankine_largest_cell_size(kStrength, rankine(), 2), 1.0 / (Hbar * std::sqrt(2.0)), 1e-15);
+}
+
+TEST(DamageLaw, RankineFollowsEquation20AlongUniaxialTensionAndSoftensLinearly) {
+  const mpm::NeoHookean m = glass();
+  const double l = 0.2e-3 * std::sqrt(3.0);  // cell diagonal of h = 0.2 mm in 3D
+  const double Hs = mpm::rankine_softening_modulus(kStrength, rankine(), l);
+  const double eps_f = kStrength / kE, eps_u = kStrength * (1.0 + Hs) / (kE * Hs);
+  ASSERT_GT(eps_u, 1.5 * eps_f);
+
+  double history = 0.0, damage = 0.0;
+  const int n = 400;
+  double last_stress = 0.0;
+  for (int k = 1; k <= n; ++k) {
+    const double eps = 1.2 * eps_u * k / n;
+    const mpm::Mat<3> F = uniaxial_F(m, eps);
+    const mpm::Mat<3> trial = m.cauchy<3>(F);
+    mpm::update_damage<3>(rankine(), trial, kStrength, l, 1e-8, history, damage);
+    const double s1 = trial(0, 0);
+    // eq. (19-20) in closed form, from the trial stress actually reached.
+    const double R = std::max(kStrength, s1);
+    const double d_expected = std::min(1.0, (1.0 + Hs) * (1.0 - kStrength / R));
+    EXPECT_NEAR(damage, d_expected, 1e-12) << "eps = " << eps;
+    EXPECT_NEAR(history, s1, 1e-9 * s1);
+
+    const double stress = mpm::degrade_stress<3>(trial, damage, mpm::Degradation::tensile_spectral)(0, 0);
+    // Linear elastic up to ε_f, then the straight line from (ε_f, σ_f) to (ε_u, 0); the neo-Hookean's
+    // finite-strain curvature at ε ~ 1e-3 is within 0.3 % of σ_f.
+    const double linear = eps <= eps_f ? kE * eps : std::max(0.0, kStrength * (eps_u - eps) / (eps_u - eps_f));
+    EXPECT_NEAR(stress, linear, 3e-3 * kStrength) << "eps = " << eps;
+    if (eps > eps_f) {
+      EXPECT_LE(stress, last_stress + 1e-9 * kStrength);  // softening branch only falls
+    }
+    last_stress = stress;
+  }
+  EXPECT_EQ(damage, 1.0);
+  EXPECT_EQ(last_stress, 0.0);
+}
+
+TEST(DamageLaw, OneSofteningElementDissipatesFractureEnergyTimesArea) {
+  // A bar element of length l_ch (the cell diagonal) and cross-section A pulled until it fails
+  // dissipates G_f A: Σ Δd ψ_t V with V = l_ch A.
+  const mpm::NeoHookean m = glass();
+  const double area = 2.5e-6;  // m²
+  for (const double h : {0.1e-3, 0.2e-3, 0.3e-3}) {
+    const double l = h * std::sqrt(3.0);
+    const double Hs = mpm::rankine_softening_modulus(kStrength, rankine(), l);
+    const double eps_u = kStrength * (1.0 + Hs) / (kE * Hs);
+    for (const mpm::Degradation deg : {mpm::Degradation::tensile_spectral, mpm::Degradation::isotropic}) {
+      double history = 0.0, damage = 0.0, dissipated = 0.0, work = 0.0;
+      double prev_eps = 0.0, prev_stress = 0.0;
+      const int n = 20000;
+      for (int k = 1; k <= n; ++k) {
+        const double eps = 1.05 * eps_u * k / n;
+        const mpm::Mat<3> F = uniaxial_F(m, eps);
+        const double d_old = damage;
+        mpm::update_damage<3>(rankine(), m.cauchy<3>(F), kStrength, l, 1e-8, history, damage);
+        // ψ_t at the end of the increment: the energy released at fixed strain (first order in 1/n).
+        dissipated += (damage - d_old) * mpm::degradable_energy<3>(m, F, deg);
+        // Work per reference volume by the trapezoidal rule on the nominal stress P = J σ F⁻ᵀ.
+        const mpm::Mat<3> P = F.determinant() * mpm::degrade_stress<3>(m.cauchy<3>(F), damage, deg) *
+                              F.inverse().transpose();
+        work += 0.5 * (P(0, 0) + prev_stress) * (eps - prev_eps);
+        prev_eps = eps;
+        prev_stress = P(0, 0);
+      }
+      ASSERT_EQ(damage, 1.0);
+      const double volume = l * area;
+      EXPECT_NEAR(dissipated * volume, kGf * area, 0.01 * kGf * area) << "h = " << h;
+      // Fully damaged, nothing is stored: all the work went into the crack.
+      EXPECT_NEAR(work * volume, kGf * area, 0.01 * kGf * area) << "h = " << h;
+      EXPECT_NEAR(dissipated, work, 0.005 * work) << "h = " << h;
+    }
+  }
+}
+
+TEST(DamageLaw, SnapBackParticleFailsAtOnce) {
+  // A strength whose H̄ l_ch ≥ 1 at this cell (e.g. a strong Weibull draw) has no softening branch.
+  const double l = 1e-3, strong = 4.0 * kStrength;
+  ASSERT_TRUE(std::isnan(mpm::rankine_softening_modulus(strong, rankine(), l)));
+  mpm::Mat<2> s = mpm::Mat<2>::Zero();
+  s(0, 0) = 0.99 * strong;
+  double history = 0.0, damage = 0.0;
+  mpm::update_damage<2>(rankine(), s, strong, l, 1e-8, history, damage);
+  EXPECT_EQ(damage, 0.0);
+  s(0, 0) = 1.001 * strong;
+  mpm::update_damage<2>(rankine(), s, strong, l, 1e-8, history, damage);
+  EXPECT_EQ(damage, 1.0);
+}
+
+TEST(DamageLaw, DamageNeverHealsAndNoDamageIsInert) {
+  const double l = 0.2e-3 * std::sqrt(2.0);
+  mpm::Mat<2> s = mpm::Mat<2>::Zero();
+  s(1, 1) = 1.2 * kStrength;
+  double history = 0.0, damage = 0.0;
+  mpm::update_damage<2>(rankine(), s, kStrength, l, 1e-8, history, damage);
+  const double d1 = damage;
+  EXPECT_GT(d1, 0.0);
+  mpm::update_damage<2>(rankine(), mpm::Mat<2>(-s), kStrength, l, 1e-8, history, damage);  // unload to compression
+  EXPECT_EQ(damage, d1);
+  EXPECT_EQ(history, 1.2 * kStrength);
+
+  double h0 = 0.0, d0 = 0.0;
+  mpm::update_damage<2>(mpm::NoDamage{}, s, kStrength, l, 1e-8, h0, d0);
+  EXPECT_EQ(h0, 0.0);
+  EXPECT_EQ(d0, 0.0);
+}
+
+TEST(DamageLaw, LargestPrincipalStressIsTheInPlaneMaximum) {
+  // σ = [[1, 2], [2, -2]] MPa: principal values (−1 ± 5)/2 → 2 and −3.
+  mpm::Mat<2> s;
+  s << 1e6, 2e6, 2e6, -2e6;
+  EXPECT_NEAR(mpm::largest_principal_stress<2>(s), 2e6, 1e-6);
+  mpm::Mat<3> t = mpm::Mat<3>::Zero();
+  t.topLeftCorner<2, 2>() = s;
+  t(2, 2) = -5e6;
+  EXPECT_NEAR(mpm::largest_principal_stress<3>(t), 2e6, 1e-3);
+  t(2, 2) = 7e6;
+  EXPECT_NEAR(mpm::largest_principal_stress<3>(t), 7e6, 1e-3);
+}
+
+TEST(DamageLaw, SpectralDegradationKeepsCompressionAndRemovesTension) {
+  // Principal stresses +30 MPa and −80 MPa on axes rotated by 30°.
+  const double c = std::cos(0.5235987755982988), sn = std::sin(0.5235987755982988);
+  mpm::Mat<2> Q;
+  Q << c, -sn, sn, c;
+  const mpm::Mat<2> principal = (mpm::Vec<2>() << 30e6, -80e6).finished().asDiagonal();
+  const mpm::Mat<2> sigma = Q * principal * Q.transpose();
+
+  // Fully damaged: the tension is gone, the compression is unchanged.
+  const mpm::Mat<2> full = mpm::degrade_stress<2>(sigma, 1.0, mpm::Degradation::tensile_spectral);
+  const mpm::Mat<2> compressive_only = Q * (mpm::Vec<2>() << 0.0, -80e6).finished().asDiagonal() * Q.transpose();
+  EXPECT_LT((full - compressive_only).norm(), 1e-6 * 80e6);
+  // Half damaged: the tensile principal value is halved.
+  const mpm::Mat<2> half = mpm::degrade_stress<2>(sigma, 0.5, mpm::Degradation::tensile_spectral);
+  EXPECT_LT((half - Q * (mpm::Vec<2>() << 15e6, -80e6).finished().asDiagonal() * Q.transpose()).norm(), 1e-6 * 80e6);
+  // Pure compression survives full damage untouched; pure tension vanishes.
+  const mpm::Mat<3> pressure = -100e6 * mpm::Mat<3>::Identity();
+  EXPECT_LT((mpm::degrade_stress<3>(pressure, 1.0, mpm::Degradation::tensile_spectral) - pressure).norm(), 1e-6);
+  EXPECT_LT(mpm::degrade_stress<3>(mpm::Mat<3>(-pressure), 1.0, mpm::Degradation::tensile_spectral).norm(), 1e-6);
+  // Undamaged: unchanged.
+  EXPECT_EQ(mpm::degrade_stress<2>(sigma, 0.0, mpm::Degradation::tensile_spectral), sigma);
+
+  // Isotropic (000 eq. 7) scales everything, compression included.
+  EXPECT_LT((mpm::degrade_stress<2>(sigma, 0.25, mpm::Degradation::isotropic) - 0.75 * sigma).norm(), 1e-9);
+  EXPECT_LT(mpm::degrade_stress<2>(sigma, 1.0, mpm::Degradation::isotropic).norm(), 1e-9);
+}
+
+TEST(DamageLaw, DegradableEnergyIsTheTensileShare) {
+  const mpm::NeoHookean m = glass();
+  // Pure compression: nothing to degrade spectrally; isotropic degrades all of ψ.
+  const mpm::Mat<2> squeeze = 0.999 * mpm::Mat<2>::Identity();
+  EXPECT_EQ(mpm::degradable_energy<2>(m, squeeze, mpm::Degradation::tensile_spectral), 0.0);
+  EXPECT_DOUBLE_EQ(mpm::degradable_energy<2>(m, squeeze, mpm::Degradation::isotropic), m.energy_density<2>(squeeze));
+  // Equibiaxial tension in 3D: everything is tensile, ψ_t = ½ τ : ln V = ψ to O(ε).
+  const mpm::Mat<3> stretch = 1.001 * mpm::Mat<3>::Identity();
+  const double psi = m.energy_density<3>(stretch);
+  EXPECT_NEAR(mpm::degradable_energy<3>(m, stretch, mpm::Degradation::tensile_spectral), psi, 3e-3 * psi);
+  // Uniaxial stress: ψ_t = ½ σ₁ ε₁ = ψ (the lateral stresses vanish).
+  const mpm::Mat<3> F = uniaxial_F(m, 1e-3);
+  const double psi_u = m.energy_density<3>(F);
+  EXPECT_NEAR(mpm::degradable_energy<3>(m, F, mpm::Degradation::tensile_spectral), psi_u, 3e-3 * psi_u);
+  // Plane strain, rotated uniaxial stretch: only the in-plane tensile direction contributes
+  // ½ τ₁ ln λ₁ (λ₃ = 1), independent of the rotation.
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  mpm::Mat<2> Q;
+  Q << c, -s, s, c;
+  const mpm::Mat<2> U = (mpm::Vec<2>() << 1.002, 1.0).finished().asDiagonal();
+  const double tau1 = m.kirchhoff<2>(U)(0, 0);
+  ASSERT_GT(tau1, 0.0);
+  ASSERT_GT(m.kirchhoff<2>(U)(1, 1), 0.0);  // lateral Kirchhoff stress of uniaxial strain is tensile too
+  const double expected = 0.5 * tau1 * std::log(1.002);  // ln λ₂ = ln λ₃ = 0
+  EXPECT_NEAR(mpm::degradable_energy<2>(m, mpm::Mat<2>(Q * U), mpm::Degradation::tensile_spectral), expected,
+              1e-9 * expected);
+}
+
+TEST(DamageLaw, TimeToFailureReachesOneAfterExactlyTauOverDtSteps) {
+  // τ = l_ch / c_f = 1 mm / 1000 m/s = 1 µs; Δt = 0.1 µs → 10 steps once σ̄₁ ≥ σ_f.
+  const mpm::TimeToFailure law{1000.0};
+  const double l = 1e-3, dt = 1e-7;
+  mpm::Mat<2> s = mpm::Mat<2>::Zero();
+  double history = 0.0, damage = 0.0;
+  s(0, 0) = 0.999 * kStrength;
+  for (int k = 0; k < 5; ++k) mpm::update_damage<2>(law, s, kStrength, l, dt, history, damage);
+  EXPECT_EQ(damage, 0.0);  // below the strength nothing starts
+  s(0, 0) = kStrength;     // failure starts at σ̄₁ = σ_f
+  for (int k = 1; k <= 10; ++k) {
+    mpm::update_damage<2>(law, s, kStrength, l, dt, history, damage);
+    if (k < 10) {
+      EXPECT_NEAR(damage, 0.1 * k, 1e-12);
+      EXPECT_LT(damage, 1.0) << "step " << k;
+    }
+    s.setZero();  // once started, failure continues although the stress has dropped
+  }
+  EXPECT_EQ(damage, 1.0);
+  mpm::update_damage<2>(law, s, kStrength, l, dt, history, damage);
+  EXPECT_EQ(damage, 1.0);
+
+  // A step size that does not divide τ: ceil(τ/Δt) steps.
+  double h2 = 0.0, d2 = 0.0;
+  s(0, 0) = 2.0 * kStrength;
+  int steps = 0;
+  while (d2 < 1.0 && steps < 100) {
+    mpm::update_damage<2>(law, s, kStrength, l, 0.3e-6, h2, d2);
+    ++steps;
+  }
+  EXPECT_EQ(steps, 4);
+}
+
+TEST(DamageLaw, WeibullMedianSizeEffectAndSeed) {
+  mpm::WeibullStrength w;
+  w.reference_strength = 100e6;
+  w.reference_volume = 1e-9;  // 1 mm³
+  w.modulus = 6.0;
+  w.thickness = 1e-3;
+  w.seed = 12345;
+  const std::size_t n = 40000;
+  const double area = 0.25e-6;  // 0.5 mm × 0.5 mm particles, V = 0.25 mm³ with 1 mm thickness
+  const std::vector<double> volumes(n, area);
+  std::vector<double> s = mpm::weibull_strengths(volumes, w, 2);
+  ASSERT_EQ(s.size(), n);
+  for (double v : s) ASSERT_TRUE(std::isfinite(v) && v > 0.0);
+
+  // Median σ̄ (V̄/V)^{1/m}: the CDF is 1 − 2^{−(σ/σ_med)^m}, density at the median ln2 m / (2 σ_med),
+  // so the sample median has standard error σ_med / (ln2 m √n) ≈ 1.2e-3 σ_med; allow 4 of them.
+  const double median_expected = 100e6 * std::pow(1e-9 / (area * 1e-3), 1.0 / 6.0);
+  EXPECT_DOUBLE_EQ(mpm::weibull_median_strength(area, w, 2), median_expected);
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const double se = median_expected / (std::log(2.0) * 6.0 * std::sqrt(static_cast<double>(n)));
+  EXPECT_NEAR(median(s), median_expected, 4.0 * se);
+
+  // Same seed → same strengths; another seed → different ones.
+  EXPECT_EQ(mpm::weibull_strengths(volumes, w, 2), s);
+  mpm::WeibullStrength w2 = w;
+  w2.seed = 54321;
+  EXPECT_NE(mpm::weibull_strengths(volumes, w2, 2), s);
+
+  // Size effect: 8× the volume is weaker by 8^{-1/m}; in 3D the volume is used as given.
+  const std::vector<double> big(n, 8.0 * area * 1e-3);
+  const std::vector<double> s_big = mpm::weibull_strengths(big, w, 3);
+  EXPECT_NEAR(median(s_big), median_expected * std::pow(8.0, -1.0 / 6.0), 4.0 * se);
+  // With the same seed the draws are the same ℛ, so every strength scales exactly by 8^{-1/m}.
+  for (std::size_t k = 0; k < 100; ++k) EXPECT_NEAR(s_big[k], s[k] * std::pow(8.0, -1.0 / 6.0), 1e-9 * s[k]);
+}

@@ -1,0 +1,177 @@
+// `fragmpm pipeline` (and the scene edit behind `fragmpm demo`): IMAGE put into the scene's image
+// bodies without moving any line; refusal to write into a non-empty directory without --overwrite,
+// a missing image and a scene without an image body give exit code 2; a tiny end-to-end run writes
+// the preview, run file, figures and summary. The full demo is not run here (minutes).
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <toml++/toml.h>
+
+#include "fragmpm/pipeline/embedded_scenes.hpp"
+#include "fragmpm/pipeline/pipeline_job.hpp"
+
+namespace fs = std::filesystem;
+namespace fp = fragmpm::pipeline;
+
+namespace {
+
+int run_fragmpm(const std::string& arguments, const fs::path& log) {
+  const std::string command = std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+fs::path fresh_directory(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("fragmpm_pipeline_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+const std::string kImage = std::string(FRAGMPM_SOURCE_DIR) + "/images/miocene_sandstone_window.png";
+
+/// A 60 x 45 um window (a few grains at 5 um cells) under a platen at 15 m/s for 0.1 us: a few
+/// hundred particles and ~60 steps. `image` is replaced by the pipeline.
+constexpr const char* kTinyScene = R"(
+[grid]
+cell_size = "5 um"
+min = ["-10 um", "-10 um"]
+max = ["70 um", "55 um"]
+particles_per_cell = 2
+
+[[materials]]
+name = "quartz"
+E = "50 GPa"
+nu = 0.2
+density = "2.3 g/cm3"
+damage = "rankine"
+strength = "25 MPa"
+fracture_energy = "0.1 N/mm"
+
+[[bodies]]
+name = "sandstone"
+material = "quartz"
+image = "replaced-by-the-pipeline.png"
+pixel_size = "1 um"
+input = "classes"
+crop = [300, 200, 60, 45]
+
+[[walls]]
+name = "floor"
+point = ["0 um", "0 um"]
+normal = [0, 1]
+
+[[walls]]
+name = "platen"
+point = ["0 um", "45 um"]
+normal = [0, -1]
+velocity = { type = "constant", value = ["0 m/s", "-15 m/s"] }
+
+[stop]
+end_time = "0.1 us"
+
+[output]
+interval = "0.05 us"
+)";
+
+fs::path write_tiny_scene(const fs::path& dir) {
+  const fs::path scene = dir / "tiny.toml";
+  std::ofstream(scene) << kTinyScene;
+  return scene;
+}
+
+}  // namespace
+
+TEST(PipelineScene, ImageIsReplacedInPlaceKeepingEveryLine) {
+  const std::string text = "[grid]\ncell_size = \"5 um\"\n\n[[bodies]]\nname = \"a\"\nimage   =  'x.png'  # grains\n"
+                           "[[bodies]]\nname = \"b\"\nshape = \"disk\"\n";
+  const std::string out = fp::scene_with_image(text, "s.toml", "/data/my \"odd\" image.png");
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), std::count(text.begin(), text.end(), '\n'));
+  const toml::table t = toml::parse(out);
+  EXPECT_EQ(t["bodies"][0]["image"].value<std::string>(), "/data/my \"odd\" image.png");
+  EXPECT_FALSE(t["bodies"][1]["image"]);
+  EXPECT_NE(out.find("# grains\n"), std::string::npos);  // the rest of the line stays
+}
+
+TEST(PipelineScene, DemoSceneHasAnImageBody) {
+  const std::string& text = fp::embedded_scene("demo/sandstone-crush.toml");
+  const toml::table t = toml::parse(fp::scene_with_image(text, "demo", "/x/y.png"));
+  EXPECT_EQ(t["bodies"][0]["image"].value<std::string>(), "/x/y.png");
+}
+
+TEST(PipelineScene, SceneWithoutImageBodyIsRejected) {
+  EXPECT_THROW(fp::scene_with_image("[[bodies]]\nname = \"a\"\nshape = \"disk\"\n", "s.toml", "/x.png"),
+               fp::PipelineError);
+  EXPECT_THROW(fp::scene_with_image("[[bodies]\n", "s.toml", "/x.png"), fp::PipelineError);
+}
+
+TEST(PipelineCommand, RefusesNonEmptyDirectoryWithoutOverwrite) {
+  const fs::path dir = fresh_directory("refuse");
+  const fs::path scene = write_tiny_scene(dir);
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "keep.txt") << "mine\n";
+  const int code =
+      run_fragmpm("pipeline " + kImage + " --scene " + scene.string() + " -o " + out.string(), dir / "log.txt");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(read_text(dir / "log.txt").find("--overwrite"), std::string::npos) << read_text(dir / "log.txt");
+  EXPECT_EQ(read_text(out / "keep.txt"), "mine\n");
+  EXPECT_FALSE(fs::exists(out / "run.h5"));
+}
+
+TEST(PipelineCommand, MissingImageIsBadInput) {
+  const fs::path dir = fresh_directory("no_image");
+  const fs::path scene = write_tiny_scene(dir);
+  const int code = run_fragmpm("pipeline " + (dir / "nope.png").string() + " --scene " + scene.string() + " -o " +
+                                   (dir / "out").string(),
+                               dir / "log.txt");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(read_text(dir / "log.txt").find("nope.png: no such file"), std::string::npos) << read_text(dir / "log.txt");
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(PipelineCommand, SceneWithoutImageBodyIsBadInput) {
+  const fs::path dir = fresh_directory("no_image_body");
+  const fs::path scene = dir / "disk.toml";
+  std::ofstream(scene) << "[[bodies]]\nname = \"a\"\nshape = \"disk\"\n";
+  const int code =
+      run_fragmpm("pipeline " + kImage + " --scene " + scene.string() + " -o " + (dir / "out").string(), dir / "log.txt");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(read_text(dir / "log.txt").find("image"), std::string::npos) << read_text(dir / "log.txt");
+}
+
+TEST(PipelineCommand, TinyRunWritesEverything) {
+  const fs::path dir = fresh_directory("tiny");
+  const fs::path scene = write_tiny_scene(dir);
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "old.txt") << "old\n";  // non-empty: needs --overwrite
+  const int code = run_fragmpm("pipeline " + kImage + " --scene " + scene.string() + " -o " + out.string() +
+                                   " --overwrite --threads 1 -q",
+                               dir / "log.txt");
+  const std::string log = read_text(dir / "log.txt");
+  ASSERT_EQ(code, 0) << log;
+  EXPECT_TRUE(fs::exists(out / "run.h5"));
+  EXPECT_TRUE(fs::exists(out / "run.xmf"));
+  EXPECT_TRUE(fs::exists(out / "segmentation.png"));
+  EXPECT_TRUE(fs::exists(out / "figures" / "damage_last.png"));
+  EXPECT_TRUE(fs::exists(out / "figures" / "energy.png"));
+  EXPECT_TRUE(fs::exists(out / "fragments" / "fragment_series.csv"));
+  const std::string summary = read_text(out / "summary.txt");
+  EXPECT_NE(summary.find("grains:"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("% of input"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("wall time:"), std::string::npos) << summary;
+  EXPECT_NE(log.find(summary.substr(0, 24)), std::string::npos);  // the summary is printed too
+}

@@ -1,0 +1,555 @@
+// Scene keys of fracture and contact (issue 3): damage laws and strengths, the snap-back check,
+// friction laws of [contact] and walls, the [contact] table, [[loads]] tractions, and surface flags
+// where bodies touch. Bad values name file, line, key and what was expected.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <variant>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "fragmpm/mpm/damage_law.hpp"
+#include "fragmpm/pipeline/scene.hpp"
+
+namespace fp = fragmpm::pipeline;
+namespace mpm = fragmpm::mpm;
+
+namespace {
+
+// h = 0.5 mm, 2 particles per cell per direction: spacing s = 0.25 mm; box 4 mm × 2 mm = 16 × 8
+// particles. Glass: E = 70 GPa, σ_f = 50 MPa, G_f = 0.02 N/mm = 20 J/m², so H̄ = σ_f²/(2 E G_f) =
+// 892.9 1/m and the largest admissible cell is 1/(H̄ √2) = 0.792 mm.
+const std::string kScene = R"([grid]
+cell_size = "0.5 mm"
+min = ["0 mm", "0 mm"]
+max = ["20 mm", "20 mm"]
+
+[[materials]]
+name = "glass"
+E = "70 GPa"
+nu = 0.22
+density = "2.3 g/cm3"
+damage = "rankine"
+strength = "50 MPa"
+fracture_energy = "0.02 N/mm"
+
+[[bodies]]
+name = "block"
+material = "glass"
+shape = "box"
+min = ["2 mm", "2 mm"]
+max = ["6 mm", "4 mm"]
+
+[[walls]]
+name = "floor"
+point = ["0 mm", "1 mm"]
+normal = [0, 1]
+friction = 0.2
+
+[stop]
+end_time = "250 us"
+)";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test setup: '" << from << "' not in scene";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+std::string with_material_keys(const std::string& keys) {
+  return replace(kScene, "damage = \"rankine\"\nstrength = \"50 MPa\"\nfracture_energy = \"0.02 N/mm\"", keys);
+}
+
+std::string with_contact(const std::string& table) { return replace(kScene, "[stop]", table + "\n\n[stop]"); }
+
+int line_of(const std::string& text, const std::string& marker) {
+  const auto at = text.find(marker);
+  EXPECT_NE(at, std::string::npos) << "test setup: marker '" << marker << "' not in scene";
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+}
+
+/// A bad scene must give a SceneError at the line of `marker`, for `key`, containing `explanation`.
+void expect_scene_error(const std::string& text, const std::string& marker, const std::string& key,
+                        const std::string& explanation) {
+  const int line = line_of(text, marker);
+  try {
+    fp::parse_scene(text, "bad.toml");
+    ADD_FAILURE() << "no error; expected key '" << key << "' at line " << line;
+  } catch (const fp::SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(e.line, line) << what;
+    EXPECT_EQ(e.key, key) << what;
+    EXPECT_NE(what.find("bad.toml:" + std::to_string(line) + ": key '" + key + "'"), std::string::npos) << what;
+    EXPECT_NE(what.find(explanation), std::string::npos) << what;
+  }
+}
+
+double sum(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- materials
+
+TEST(SceneFracture, RankineMaterialInSIUnitsAndUniformStrength) {
+  const mpm::Problem<2> p = fp::parse_scene(kScene, "good.toml");
+  const mpm::MaterialSpec& m = p.materials.at(0);
+  ASSERT_TRUE(std::holds_alternative<mpm::RankineSoftening>(m.damage));
+  const auto& r = std::get<mpm::RankineSoftening>(m.damage);
+  EXPECT_NEAR(r.fracture_energy, 20.0, 1e-12);   // "0.02 N/mm" = 20 J/m²
+  EXPECT_NEAR(r.youngs_modulus, 70e9, 1e-3);     // E back from K and G
+  EXPECT_DOUBLE_EQ(m.strength, 50e6);
+  EXPECT_EQ(m.degradation, mpm::Degradation::tensile_spectral);  // the default
+  EXPECT_FALSE(m.weibull);
+  ASSERT_EQ(p.particles.size(), 128u);
+  for (double s : p.particles.strength) EXPECT_EQ(s, 50e6);
+}
+
+TEST(SceneFracture, TimeToFailureIsotropicAndNoDamage) {
+  const std::string text = with_material_keys(
+      "damage = \"time-to-failure\"\nstrength = \"30 MPa\"\ncrack_speed = \"1.5 km/s\"\ndegradation = \"isotropic\"");
+  const mpm::Problem<2> p = fp::parse_scene(text, "ttf.toml");
+  ASSERT_TRUE(std::holds_alternative<mpm::TimeToFailure>(p.materials[0].damage));
+  EXPECT_DOUBLE_EQ(std::get<mpm::TimeToFailure>(p.materials[0].damage).crack_speed, 1500.0);
+  EXPECT_EQ(p.materials[0].degradation, mpm::Degradation::isotropic);
+  for (double s : p.particles.strength) EXPECT_EQ(s, 30e6);
+
+  const mpm::Problem<2> elastic = fp::parse_scene(with_material_keys("damage = \"none\""), "elastic.toml");
+  EXPECT_FALSE(elastic.materials[0].damages());
+  for (double s : elastic.particles.strength) EXPECT_TRUE(std::isinf(s));
+}
+
+TEST(SceneFracture, WeibullStrengthsAreSeededPerParticleDraws) {
+  const std::string weibull = "damage = \"time-to-failure\"\ncrack_speed = \"2000 m/s\"\n"
+                              "weibull = { reference_strength = \"100 MPa\", reference_volume = \"1 mm3\", modulus = 6, seed = 7 }";
+  const std::string text =
+      replace(with_material_keys(weibull), "[[materials]]", "[physics]\nthickness = \"2 mm\"\n\n[[materials]]");
+  const mpm::Problem<2> p = fp::parse_scene(text, "weibull.toml");
+  const mpm::MaterialSpec& m = p.materials[0];
+  ASSERT_TRUE(m.weibull);
+  EXPECT_DOUBLE_EQ(m.weibull_strength.reference_strength, 100e6);
+  EXPECT_NEAR(m.weibull_strength.reference_volume, 1e-9, 1e-24);
+  EXPECT_EQ(m.weibull_strength.modulus, 6.0);
+  EXPECT_EQ(m.weibull_strength.seed, 7u);
+  EXPECT_DOUBLE_EQ(m.weibull_strength.thickness, 2e-3);
+  // Exactly the draws of weibull_strengths over the particles' areas × thickness, in particle order.
+  EXPECT_EQ(p.particles.strength, mpm::weibull_strengths(p.particles.volume0, m.weibull_strength, 2));
+  // Particle volume 0.25 mm × 0.25 mm × 2 mm = 0.125 mm³ → median 100 MPa × 8^{1/6} = 141.4 MPa.
+  EXPECT_NEAR(mpm::weibull_median_strength(p.particles.volume0[0], m.weibull_strength, 2), 100e6 * std::pow(8.0, 1.0 / 6.0),
+              1.0);
+  std::vector<double> s = p.particles.strength;
+  EXPECT_GT(*std::max_element(s.begin(), s.end()), *std::min_element(s.begin(), s.end()));
+  // Reproducible; another seed draws other strengths.
+  EXPECT_EQ(fp::parse_scene(text, "again.toml").particles.strength, p.particles.strength);
+  EXPECT_NE(fp::parse_scene(replace(text, "seed = 7", "seed = 8"), "other.toml").particles.strength, p.particles.strength);
+
+  // σ̄_f may come from `strength` instead (or both, when they agree); the seed defaults to 0.
+  const std::string from_strength = replace(
+      replace(text, "reference_strength = \"100 MPa\", ", ""), "crack_speed =", "strength = \"0.1 GPa\"\ncrack_speed =");
+  const mpm::Problem<2> q = fp::parse_scene(replace(from_strength, ", seed = 7", ""), "strength.toml");
+  EXPECT_DOUBLE_EQ(q.materials[0].weibull_strength.reference_strength, 100e6);
+  EXPECT_EQ(q.materials[0].weibull_strength.seed, 0u);
+  const mpm::Problem<2> both = fp::parse_scene(replace(text, "crack_speed =", "strength = \"100 MPa\"\ncrack_speed ="), "both.toml");
+  EXPECT_EQ(both.particles.strength, p.particles.strength);
+}
+
+TEST(SceneFracture, SnapBackNamesTheLargestAdmissibleCellSize) {
+  // G_f = 10 J/m²: h_max = 2 E G_f / (σ_f² √2) = 0.396 mm < h = 0.5 mm.
+  const std::string text = replace(kScene, "\"0.02 N/mm\"", "\"10 J/m2\"");
+  expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy", "cell too coarse for this material (snap-back)");
+  expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy", "the largest admissible cell size is 0.00039598 m");
+  // At h = 0.35 mm the same material is fine.
+  const mpm::Problem<2> p = fp::parse_scene(replace(text, "cell_size = \"0.5 mm\"", "cell_size = \"0.35 mm\""), "fine.toml");
+  EXPECT_TRUE(p.materials[0].damages());
+}
+
+// ---------------------------------------------------------------- friction and contact
+
+TEST(SceneFracture, ContactTableAndEveryFrictionLaw) {
+  const mpm::Problem<2> defaults = fp::parse_scene(kScene, "good.toml");
+  EXPECT_EQ(defaults.contact.partitioning, mpm::Partitioning::automatic);
+  EXPECT_EQ(defaults.contact.critical_damage, 1.0);
+  EXPECT_EQ(defaults.contact.minimum_damage, 0.25);
+  ASSERT_TRUE(std::holds_alternative<mpm::CoulombFriction>(defaults.walls[0].friction));
+  EXPECT_EQ(std::get<mpm::CoulombFriction>(defaults.walls[0].friction).coefficient, 0.2);
+
+  const mpm::Problem<2> p = fp::parse_scene(with_contact(R"([contact]
+partitioning = "off"
+friction = 0.35
+critical_damage = 0.9
+minimum_damage = 0.1
+rebuild_fraction = 0.5
+gap_test = true
+normal = [3, 4])"),
+                                            "contact.toml");
+  EXPECT_EQ(p.contact.partitioning, mpm::Partitioning::off);
+  EXPECT_EQ(std::get<mpm::CoulombFriction>(p.contact.friction).coefficient, 0.35);
+  EXPECT_EQ(p.contact.critical_damage, 0.9);
+  EXPECT_EQ(p.contact.minimum_damage, 0.1);
+  EXPECT_EQ(p.contact.rebuild_fraction, 0.5);
+  EXPECT_TRUE(p.contact.position_gap_test);
+  EXPECT_NEAR(p.contact.normal.x(), 0.6, 1e-15);
+  EXPECT_NEAR(p.contact.normal.y(), 0.8, 1e-15);
+
+  auto contact_friction = [&](const std::string& table) {
+    return fp::parse_scene(with_contact("[contact]\nfriction = " + table), "law.toml").contact.friction;
+  };
+  {
+    const auto f = contact_friction(R"({ law = "coulomb", mu = 0.4 })");
+    EXPECT_EQ(std::get<mpm::CoulombFriction>(f).coefficient, 0.4);
+  }
+  {
+    const auto f = contact_friction(R"({ law = "velocity-dependent", mu = 0.3, slope = "0.02 s/m" })");
+    EXPECT_EQ(std::get<mpm::VelocityDependentFriction>(f).coefficient, 0.3);
+    EXPECT_DOUBLE_EQ(std::get<mpm::VelocityDependentFriction>(f).slope, 0.02);
+  }
+  {
+    const auto f = contact_friction(R"({ law = "adhesion", mu = 0.2, shear_strength = "2 MPa", tensile_strength = "1 MPa" })");
+    const auto& a = std::get<mpm::AdhesiveFriction>(f);
+    EXPECT_EQ(a.coefficient, 0.2);
+    EXPECT_DOUBLE_EQ(a.shear_strength, 2e6);
+    EXPECT_DOUBLE_EQ(a.tensile_strength, 1e6);
+  }
+  {
+    const auto f = contact_friction(R"({ law = "static-dynamic", mu_static = 0.6, mu_dynamic = 0.3, half_velocity = "10 cm/s" })");
+    const auto& s = std::get<mpm::SmoothStaticDynamicFriction>(f);
+    EXPECT_EQ(s.static_coefficient, 0.6);
+    EXPECT_EQ(s.dynamic_coefficient, 0.3);
+    EXPECT_DOUBLE_EQ(s.half_velocity, 0.1);
+  }
+  {
+    const auto f = contact_friction(R"({ law = "thermal-softening", mu = 0.4, theta_ref = "20 C", theta_dam = "800 C" })");
+    const auto& t = std::get<mpm::ThermalSofteningFriction>(f);
+    EXPECT_EQ(t.coefficient, 0.4);
+    EXPECT_DOUBLE_EQ(t.reference_temperature, 293.15);
+    EXPECT_DOUBLE_EQ(t.damage_temperature, 1073.15);
+  }
+  // Walls read the same number-or-table.
+  const mpm::Problem<2> w = fp::parse_scene(
+      replace(kScene, "friction = 0.2", R"(friction = { law = "static-dynamic", mu_static = 0.5, mu_dynamic = 0.2, half_velocity = 0 })"),
+      "wall.toml");
+  EXPECT_EQ(std::get<mpm::SmoothStaticDynamicFriction>(w.walls[0].friction).static_coefficient, 0.5);
+  // A table without `law` is Coulomb.
+  const mpm::Problem<2> c = fp::parse_scene(replace(kScene, "friction = 0.2", "friction = { mu = 0.15 }"), "c.toml");
+  EXPECT_EQ(std::get<mpm::CoulombFriction>(c.walls[0].friction).coefficient, 0.15);
+}
+
+// ---------------------------------------------------------------- loads
+
+TEST(SceneFracture, SideLoadsCarryTheirEdgeLengths) {
+  const std::string text = replace(kScene, "[stop]", R"([[loads]]
+name = "pull"
+body = "block"
+side = "+y"
+traction = ["0 MPa", "2 MPa"]
+
+[[loads]]
+body = "block"
+side = "-x"
+traction = { times = ["0 us", "10 us", "20 us"], values = [[0, 0], ["-1 MPa", 0], [0, 0]] }
+
+[stop])");
+  const mpm::Problem<2> p = fp::parse_scene(text, "loads.toml");
+  ASSERT_EQ(p.loads.size(), 2u);
+  const mpm::TractionLoad<2>& top = p.loads[0];
+  EXPECT_EQ(top.name, "pull");
+  // The top row of the 16 × 8 box: 16 particles, each with an edge of s = 0.25 mm; Σ a_p = 4 mm.
+  ASSERT_EQ(top.particles.size(), 16u);
+  for (auto k : top.particles) EXPECT_NEAR(p.particles.x[static_cast<std::size_t>(k)].y(), 4e-3 - 0.125e-3, 1e-12);
+  EXPECT_NEAR(sum(top.boundary_measure), 4e-3, 1e-15);
+  EXPECT_DOUBLE_EQ(top.traction(123.0).y(), 2e6);
+  // Left side: 8 particles, Σ a_p = 2 mm; the ramp peaks at 10 µs.
+  const mpm::TractionLoad<2>& left = p.loads[1];
+  EXPECT_EQ(left.name, "load-1");
+  ASSERT_EQ(left.particles.size(), 8u);
+  EXPECT_NEAR(sum(left.boundary_measure), 2e-3, 1e-15);
+  EXPECT_DOUBLE_EQ(left.traction(5e-6).x(), -0.5e6);
+  EXPECT_DOUBLE_EQ(left.traction(10e-6).x(), -1e6);
+  EXPECT_DOUBLE_EQ(left.traction(30e-6).x(), 0.0);
+}
+
+TEST(SceneFracture, RegionLoadsTakeBoundaryParticlesInTheBox) {
+  // Region over the right half of the top edge: 8 surface particles of the top row.
+  const std::string text = replace(kScene, "[stop]", R"([[loads]]
+body = "block"
+region = { min = ["4 mm", "3.8 mm"], max = ["6 mm", "4 mm"] }
+traction = [0, "-1 MPa"]
+
+[[loads]]
+body = "block"
+side = "+y"
+region = { min = ["2 mm", "0 mm"], max = ["3 mm", "20 mm"] }
+traction = [0, "1 MPa"]
+
+[stop])");
+  const mpm::Problem<2> p = fp::parse_scene(text, "region.toml");
+  ASSERT_EQ(p.loads[0].particles.size(), 8u);
+  EXPECT_NEAR(sum(p.loads[0].boundary_measure), 2e-3, 1e-15);
+  for (auto k : p.loads[0].particles) EXPECT_EQ(p.particles.surface[static_cast<std::size_t>(k)], 1);
+  // Side and region together: the top row between x = 2 and 3 mm (4 particles).
+  ASSERT_EQ(p.loads[1].particles.size(), 4u);
+  EXPECT_NEAR(sum(p.loads[1].boundary_measure), 1e-3, 1e-15);
+}
+
+// ---------------------------------------------------------------- surface flags
+
+namespace {
+
+/// The rule every body source must satisfy, independent of how it was sampled: a particle is on the
+/// surface exactly when one of its eight lattice neighbours x + s (i, j) holds no particle of its own body.
+void expect_surface_rule(const mpm::Particles<2>& P, double s) {
+  std::map<std::pair<long long, long long>, std::int32_t> at;
+  auto cell = [&](const Eigen::Vector2d& x) {
+    return std::make_pair(std::llround(x.x() / s * 2.0), std::llround(x.y() / s * 2.0));  // half-spacing keys
+  };
+  for (std::size_t k = 0; k < P.size(); ++k) at[cell(P.x[k])] = P.body[k];
+  std::size_t checked = 0;
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    bool open = false;
+    for (int j = -1; j <= 1; ++j)
+      for (int i = -1; i <= 1; ++i) {
+        if (i == 0 && j == 0) continue;
+        const auto it = at.find(cell(P.x[k] + s * Eigen::Vector2d(i, j)));
+        if (it == at.end() || it->second != P.body[k]) open = true;
+      }
+    EXPECT_EQ(P.surface[k], open ? 1 : 0) << "particle " << k << " of body " << P.body[k] << " at " << P.x[k].transpose();
+    ++checked;
+  }
+  EXPECT_EQ(checked, P.size());
+}
+
+}  // namespace
+
+TEST(SceneFracture, TouchingShapeBodiesAreSurfacesOnBothSides) {
+  // A box, a box sharing its right edge, and a disk touching the top of the first box.
+  const std::string text = replace(kScene, "[[walls]]", R"([[bodies]]
+name = "right"
+material = "glass"
+shape = "box"
+min = ["6 mm", "2 mm"]
+max = ["8 mm", "4 mm"]
+
+[[bodies]]
+name = "ball"
+material = "glass"
+shape = "disk"
+center = ["4 mm", "6 mm"]
+radius = "2 mm"
+
+[[walls]])");
+  const mpm::Problem<2> p = fp::parse_scene(text, "touch.toml");
+  ASSERT_EQ(p.body_names.size(), 3u);
+  expect_surface_rule(p.particles, 0.25e-3);
+  // Both rows at the shared edge x = 6 mm are surfaces.
+  std::size_t at_edge[2] = {0, 0};
+  for (std::size_t k = 0; k < p.particles.size(); ++k)
+    if (std::abs(std::abs(p.particles.x[k].x() - 6e-3) - 0.125e-3) < 1e-9 && p.particles.body[k] < 2) {
+      EXPECT_EQ(p.particles.surface[k], 1);
+      ++at_edge[p.particles.body[k]];
+    }
+  EXPECT_EQ(at_edge[0], 8u);
+  EXPECT_EQ(at_edge[1], 8u);
+}
+
+TEST(SceneFracture, ShapeBodyTouchingImageGrainsIsASurfaceOnBothSides) {
+  // A label image with two touching rectangular grains (1 µm pixels = the particle spacing), and a
+  // shape box touching the grains' right edge.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "fragmpm_scene_fracture";
+  fs::create_directories(dir);
+  cv::Mat labels(20, 30, CV_8U, cv::Scalar(0));
+  labels(cv::Rect(0, 0, 15, 20)).setTo(1);
+  labels(cv::Rect(15, 0, 15, 20)).setTo(2);
+  cv::imwrite((dir / "two_grains.png").string(), labels);
+  const std::string text = R"([grid]
+cell_size = "2 um"
+min = ["0 um", "0 um"]
+max = ["100 um", "100 um"]
+
+[[materials]]
+name = "quartz"
+E = "50 GPa"
+nu = 0.2
+density = "2.6 g/cm3"
+
+[[bodies]]
+name = "rock"
+material = "quartz"
+image = "two_grains.png"
+input = "labels"
+pixel_size = "1 um"
+origin = ["10 um", "10 um"]
+
+[[bodies]]
+name = "anvil"
+material = "quartz"
+shape = "box"
+min = ["40 um", "10 um"]
+max = ["50 um", "30 um"]
+
+[[loads]]
+body = "rock"
+side = "-y"
+traction = [0, "1 MPa"]
+
+[stop]
+end_time = "1 us"
+)";
+  const fs::path path = dir / "grains_and_box.toml";
+  std::ofstream(path) << text;
+  const mpm::Problem<2> p = fp::load_scene(path.string());
+  ASSERT_EQ(p.body_names.size(), 3u);
+  expect_surface_rule(p.particles, 1e-6);
+  // A load on an image entry covers all its grains: the bottom rows of both, 30 particles of 1 µm.
+  ASSERT_EQ(p.loads.size(), 1u);
+  EXPECT_EQ(p.loads[0].particles.size(), 30u);
+  EXPECT_NEAR(sum(p.loads[0].boundary_measure), 30e-6, 1e-15);
+}
+
+// ---------------------------------------------------------------- bad scenes
+
+struct BadFractureScene {
+  const char* name;
+  std::string text;
+  std::string marker;
+  std::string key;
+  std::string explanation;
+};
+
+class BadFractureSceneTest : public testing::TestWithParam<BadFractureScene> {};
+
+TEST_P(BadFractureSceneTest, NamesFileLineKeyAndWhatWasExpected) {
+  const BadFractureScene& c = GetParam();
+  expect_scene_error(c.text, c.marker, c.key, c.explanation);
+}
+
+namespace {
+
+std::string with_load(const std::string& load) { return replace(kScene, "[stop]", "[[loads]]\n" + load + "\n\n[stop]"); }
+
+std::vector<BadFractureScene> bad_scenes() {
+  const std::string weibull = "weibull = { reference_strength = \"100 MPa\", reference_volume = \"1 mm3\", modulus = 6 }";
+  return {
+      {"unknown_damage", replace(kScene, "\"rankine\"", "\"brittle\""), "damage", "materials[0].damage",
+       "one of \"none\", \"rankine\", \"time-to-failure\", got \"brittle\""},
+      {"strength_wrong_unit", replace(kScene, "\"50 MPa\"", "\"50 mm\""), "strength", "materials[0].strength",
+       "expected a pressure"},
+      {"negative_strength", replace(kScene, "\"50 MPa\"", "\"-5 MPa\""), "strength", "materials[0].strength",
+       "positive tensile strength"},
+      {"missing_strength", replace(kScene, "strength = \"50 MPa\"\n", ""), "[[materials]]", "materials[0].strength",
+       "missing required key: expected strength"},
+      {"missing_fracture_energy", replace(kScene, "fracture_energy = \"0.02 N/mm\"\n", ""), "[[materials]]",
+       "materials[0].fracture_energy", "missing required key"},
+      {"fracture_energy_wrong_unit", replace(kScene, "\"0.02 N/mm\"", "\"20 J\""), "fracture_energy",
+       "materials[0].fracture_energy", "expected an energy per area"},
+      {"zero_fracture_energy", replace(kScene, "\"0.02 N/mm\"", "0"), "fracture_energy", "materials[0].fracture_energy",
+       "positive fracture energy"},
+      {"crack_speed_with_rankine", replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ncrack_speed = 100"),
+       "crack_speed", "materials[0].crack_speed", "only with damage = \"time-to-failure\""},
+      {"fracture_energy_with_ttf", replace(kScene, "damage = \"rankine\"", "damage = \"time-to-failure\"\ncrack_speed = 100"),
+       "fracture_energy", "materials[0].fracture_energy", "only with damage = \"rankine\""},
+      {"missing_crack_speed", replace(kScene, "damage = \"rankine\"\nstrength = \"50 MPa\"\nfracture_energy = \"0.02 N/mm\"",
+                                      "damage = \"time-to-failure\"\nstrength = \"50 MPa\""),
+       "[[materials]]", "materials[0].crack_speed", "missing required key: expected a velocity"},
+      {"negative_crack_speed", with_material_keys("damage = \"time-to-failure\"\nstrength = 1e6\ncrack_speed = \"-3 m/s\""),
+       "crack_speed", "materials[0].crack_speed", "positive crack speed"},
+      {"strength_without_damage", with_material_keys("strength = \"50 MPa\""), "strength", "materials[0].strength",
+       "only with a damage law"},
+      {"unknown_degradation", replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ndegradation = \"spectral\""),
+       "degradation", "materials[0].degradation", "one of \"tensile\""},
+      {"strength_differs_from_weibull",
+       replace(replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\n" + weibull), "[[materials]]",
+               "[physics]\nthickness = \"1 mm\"\n\n[[materials]]"),
+       "weibull", "materials[0].weibull.reference_strength", "expected the material's strength = 5e+07 Pa"},
+      {"weibull_without_thickness",
+       with_material_keys("damage = \"time-to-failure\"\ncrack_speed = 100\n" + weibull), "weibull",
+       "materials[0].weibull", "missing [physics] thickness"},
+      {"weibull_bad_modulus",
+       replace(with_material_keys("damage = \"time-to-failure\"\ncrack_speed = 100\n" +
+                                  replace(weibull, "modulus = 6", "modulus = 0")),
+               "[[materials]]", "[physics]\nthickness = \"1 mm\"\n\n[[materials]]"),
+       "weibull", "materials[0].weibull.modulus", "positive Weibull modulus"},
+      {"weibull_volume_wrong_unit",
+       replace(with_material_keys("damage = \"time-to-failure\"\ncrack_speed = 100\n" +
+                                  replace(weibull, "\"1 mm3\"", "\"1 mm2\"")),
+               "[[materials]]", "[physics]\nthickness = \"1 mm\"\n\n[[materials]]"),
+       "weibull", "materials[0].weibull.reference_volume", "expected a volume (SI unit m3"},
+      {"zero_thickness", replace(kScene, "[[materials]]", "[physics]\nthickness = 0\n\n[[materials]]"), "thickness",
+       "physics.thickness", "positive out-of-plane thickness"},
+      {"snap_back", replace(kScene, "\"0.5 mm\"", "\"1 mm\""), "fracture_energy", "materials[0].fracture_energy",
+       "the largest admissible cell size is 0.00079196 m"},
+      {"unknown_contact_key", with_contact("[contact]\nfrictoin = 1"), "frictoin", "contact.frictoin",
+       "unknown key (did you mean 'friction'?)"},
+      {"unknown_partitioning", with_contact("[contact]\npartitioning = \"on\""), "partitioning", "contact.partitioning",
+       "one of \"auto\", \"off\", \"bodies\""},
+      {"critical_damage_zero", with_contact("[contact]\ncritical_damage = 0"), "critical_damage", "contact.critical_damage",
+       "0 < D_cr <= 1"},
+      {"minimum_damage_one", with_contact("[contact]\nminimum_damage = 1"), "minimum_damage", "contact.minimum_damage",
+       "0 <= D_min < 1"},
+      {"rebuild_fraction_big", with_contact("[contact]\nrebuild_fraction = 2"), "rebuild_fraction",
+       "contact.rebuild_fraction", "0 <= rebuild_fraction <= 1"},
+      {"gap_test_not_bool", with_contact("[contact]\ngap_test = 1"), "gap_test", "contact.gap_test", "true or false"},
+      {"zero_contact_normal", with_contact("[contact]\nnormal = [0, 0]"), "normal = [0, 0]", "contact.normal",
+       "non-zero normal"},
+      {"friction_string", with_contact("[contact]\nfriction = \"rough\""), "rough", "contact.friction",
+       "a Coulomb friction coefficient (a number >= 0) or a friction-law table"},
+      {"unknown_friction_law", with_contact("[contact]\nfriction = { law = \"viscous\", mu = 1 }"), "viscous",
+       "contact.friction.law", "one of \"coulomb\", \"velocity-dependent\""},
+      {"negative_mu_in_table", with_contact("[contact]\nfriction = { law = \"coulomb\", mu = -0.2 }"), "mu = -0.2",
+       "contact.friction.mu", "friction coefficient >= 0, got -0.2"},
+      {"key_of_other_law", with_contact("[contact]\nfriction = { law = \"coulomb\", mu = 0.2, slope = 1 }"), "slope",
+       "contact.friction.slope", "unknown key"},
+      {"slope_wrong_unit", with_contact("[contact]\nfriction = { law = \"velocity-dependent\", mu = 0.2, slope = \"1 m/s\" }"),
+       "slope", "contact.friction.slope", "expected an inverse velocity (SI unit s/m"},
+      {"adhesion_missing_shear", with_contact("[contact]\nfriction = { law = \"adhesion\", mu = 0.2 }"), "adhesion",
+       "contact.friction.shear_strength", "missing required key: expected a pressure"},
+      {"theta_dam_below_ref",
+       with_contact("[contact]\nfriction = { law = \"thermal-softening\", mu = 0.2, theta_ref = \"500 C\", theta_dam = \"400 C\" }"),
+       "theta_dam", "contact.friction.theta_dam", "a temperature above theta_ref = 773.15 K"},
+      {"negative_half_velocity",
+       with_contact("[contact]\nfriction = { law = \"static-dynamic\", mu_static = 0.5, mu_dynamic = 0.3, half_velocity = -1 }"),
+       "half_velocity", "contact.friction.half_velocity", "v½ >= 0"},
+      {"wall_friction_table_bad",
+       replace(kScene, "friction = 0.2", "friction = { law = \"adhesion\", mu = 0.2, shear_strength = \"-1 MPa\" }"),
+       "friction = {", "walls[0].friction.shear_strength", "S_a >= 0"},
+      {"load_unknown_body", with_load("body = \"blok\"\nside = \"+x\"\ntraction = [1, 0]"), "blok", "loads[0].body",
+       "the name of a body in [[bodies]]"},
+      {"load_bad_side", with_load("body = \"block\"\nside = \"top\"\ntraction = [1, 0]"), "top", "loads[0].side",
+       "one of \"+x\", \"-x\", \"+y\", \"-y\""},
+      {"load_without_side_or_region", with_load("body = \"block\" # here\ntraction = [1, 0]"), "[[loads]]", "loads[0].side",
+       "missing required key: expected side"},
+      {"load_empty_region",
+       with_load("body = \"block\"\nregion = { min = [\"10 mm\", \"10 mm\"], max = [\"12 mm\", \"12 mm\"] }\ntraction = [1, 0]"),
+       "region", "loads[0].region", "selects at least one particle of 'block', got none"},
+      {"load_region_inverted",
+       with_load("body = \"block\"\nregion = { min = [\"10 mm\", \"10 mm\"], max = [\"2 mm\", \"12 mm\"] }\ntraction = [1, 0]"),
+       "region", "loads[0].region.max", "expected max >= min"},
+      {"load_missing_traction", with_load("body = \"block\"\nside = \"+x\""), "[[loads]]", "loads[0].traction",
+       "missing required key"},
+      {"load_traction_wrong_unit", with_load("body = \"block\"\nside = \"+x\"\ntraction = [\"1 N\", 0]"), "traction",
+       "loads[0].traction[0]", "expected a pressure"},
+      {"load_times_decreasing",
+       with_load("body = \"block\"\nside = \"+x\"\ntraction = { times = [0, \"2 us\",\n \"1 us\"], values = [[0, 0], [1, 0], [0, 0]] }"),
+       "\"1 us\"]", "loads[0].traction.times[2]", "increasing order, got 1e-06 s after 2e-06 s"},
+      {"load_values_count",
+       with_load("body = \"block\"\nside = \"+x\"\ntraction = { times = [0, \"2 us\"], values = [[0, 0]] }"), "values",
+       "loads[0].traction.values", "one traction [tx, ty] per time (2), got 1"},
+      {"load_traction_scalar", with_load("body = \"block\"\nside = \"+x\"\ntraction = 5"), "traction = 5",
+       "loads[0].traction", "a constant traction [tx, ty]"},
+  };
+}
+
+}  // namespace
+
+INSTANTIATE_TEST_SUITE_P(SceneFracture, BadFractureSceneTest, testing::ValuesIn(bad_scenes()),
+                         [](const testing::TestParamInfo<BadFractureScene>& info) { return std::string(info.param.name); });
