@@ -235,7 +235,8 @@ void nodal_damage_gradient(const std::vector<Vec<D>>& particle_gradient,
                            std::vector<Vec<D>>& nodal_gradient);
 
 /// The structure-tensor nodal gradient over all particles (same CSR layout and output as
-/// nodal_damage_gradient): ∇D̄_i = principal_gradient(Σ_p ∇D̄_p ⊗ ∇D̄_p). Serial.
+/// nodal_damage_gradient): ∇D̄_i = principal_gradient(Σ_p ∇D̄_p ⊗ ∇D̄_p). Serial; allocates
+/// one tensor per node (a test/reference path; the solver accumulates in its P2G).
 template <int D>
 void nodal_damage_gradient_principal(const std::vector<Vec<D>>& particle_gradient,
                                      const std::vector<std::size_t>& node_start,
