@@ -12,8 +12,9 @@ namespace fragmpm::analysis {
 
 namespace {
 
-/// Ten qualitative colours of roughly equal lightness and well-separated hue (blue, orange, green,
-/// red, purple, brown, pink, grey, olive, cyan).
+/// Ten qualitative colours of well-separated hue (blue, orange, green, red, purple, brown, pink,
+/// navy, olive, cyan). No grey: grey is `no_data_colour()`, the colour of "none" (e.g. masked
+/// particles and fines in a fragment figure), which no id may share.
 constexpr std::array<Rgb, 10> qualitative{{{31, 119, 180},
                                            {255, 127, 14},
                                            {44, 160, 44},
@@ -21,7 +22,7 @@ constexpr std::array<Rgb, 10> qualitative{{{31, 119, 180},
                                            {148, 103, 189},
                                            {140, 86, 75},
                                            {227, 119, 194},
-                                           {127, 127, 127},
+                                           {40, 40, 120},
                                            {188, 189, 34},
                                            {23, 190, 207}}};
 

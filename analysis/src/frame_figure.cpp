@@ -1,6 +1,7 @@
 // Run-frame particle figures (see frame_figure.hpp).
 #include "fragmpm/analysis/frame_figure.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -41,6 +42,27 @@ void require_size(const std::vector<T>& v, std::size_t n, const char* what) {
   if (v.size() != n)
     throw FigureError(fmt::format("frame figure: the frame has {} {} values for {} particles{}", v.size(), what, n,
                                   v.empty() ? " (not stored in this frame)" : ""));
+}
+
+/// Colour range of a field dominated by a few extreme particles (stress concentrations at contacts
+/// and crack tips reach 10 x the bulk value): the 1st and 99th percentiles of the finite values, so
+/// the bulk is not all one colour; the values beyond take the end colours. Returns false (range left
+/// to the default) when there are too few values for percentiles to mean anything, or they coincide.
+bool clip_to_percentiles(ParticleFigure& f) {
+  std::vector<double> v;
+  for (double x : f.values)
+    if (std::isfinite(x)) v.push_back(x);
+  if (v.size() < 200) return false;
+  auto at = [&v](double q) {
+    const auto k = static_cast<std::ptrdiff_t>(std::llround(q * static_cast<double>(v.size() - 1)));
+    std::nth_element(v.begin(), v.begin() + k, v.end());
+    return v[static_cast<std::size_t>(k)];
+  };
+  const double lo = at(0.01), hi = at(0.99);
+  if (!(hi > lo)) return false;
+  f.vmin = lo;
+  f.vmax = hi;
+  return true;
 }
 
 }  // namespace
@@ -93,7 +115,7 @@ ParticleFigure frame_figure(const mpm::Particles<2>& p, FrameField field, std::o
       require_size(p.stress, n, "stress");
       f.values.reserve(n);
       for (const auto& s : p.stress) f.values.push_back(1e-6 * max_principal_stress(s));
-      name_field(f, "max principal stress", "MPa");
+      name_field(f, clip_to_percentiles(f) ? "max principal stress, 1-99 % range" : "max principal stress", "MPa");
       break;
     case FrameField::body:
       require_size(p.body, n, "body");
@@ -105,12 +127,22 @@ ParticleFigure frame_figure(const mpm::Particles<2>& p, FrameField field, std::o
   return f;
 }
 
+std::vector<std::int64_t> resolved_fragment_ids(const FragmentLabels& labels) {
+  std::vector<std::int64_t> ids(labels.fragment.size(), -1);
+  for (std::size_t p = 0; p < ids.size(); ++p) {
+    const std::int32_t f = labels.fragment[p];
+    if (f >= 0 && !labels.fine[static_cast<std::size_t>(f)]) ids[p] = f;
+  }
+  return ids;
+}
+
 ParticleFigure fragment_figure(const mpm::Particles<2>& p, const std::vector<std::int64_t>& fragment_ids,
                                std::optional<double> time, const std::string& title) {
   ParticleFigure f = geometry(p, time, title);
   require_size(fragment_ids, p.size(), "fragment id");
   f.ids = fragment_ids;
   f.id_name = std::string("fragment");
+  f.none_name = std::string("masked or fines");
   name_field(f, "fragment", "");
   return f;
 }

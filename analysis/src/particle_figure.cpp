@@ -46,14 +46,14 @@ std::vector<std::int64_t> legend_ids(const std::vector<std::int64_t>& ids) {
 }
 
 std::string id_text(const ParticleFigure& f, std::int64_t id) {
-  return id < 0 ? std::string("none") : fmt::format("{} {}", f.id_name, id);
+  return id < 0 ? f.none_name : fmt::format("{} {}", f.id_name, id);
 }
 
 struct Layout {
   ParticleFrame frame;
   AxisTicks bar_ticks;               ///< continuous fields
   std::vector<std::int64_t> legend;  ///< ids shown (categorical)
-  std::size_t distinct_ids = 0;
+  std::string overflow_text;         ///< "... 18 fragments in all" when not every id fits
   double legend_left = 0, legend_top = 0, legend_row = 0, legend_swatch = 0;
   double bottom_text_y = 0;  ///< top of the scale-bar / time row
   double drawn_right = 0;    ///< right edge of the particles [px]
@@ -125,14 +125,20 @@ Layout layout(const ParticleFigure& fig) {
     pf.bar_right = static_cast<int>(std::lround(fig.width - strip + 2 * st.pad + bar_w));
     pf.bar_left = static_cast<int>(std::lround(fig.width - strip + 2 * st.pad));
   } else {
+    // Ids in order, "none" last; when they do not fit, the first ids, "none", and a count of all.
     const std::vector<std::int64_t> ids = legend_ids(fig.ids);
-    l.distinct_ids = ids.size();
-    l.legend.assign(ids.begin(), ids.begin() + static_cast<long>(std::min(ids.size(), max_legend_rows - 1)));
-    if (ids.size() == max_legend_rows) l.legend = ids;
+    const bool has_none = !ids.empty() && ids.back() < 0;
+    const std::size_t named = ids.size() - (has_none ? 1 : 0);
+    l.legend = ids;
+    if (ids.size() > max_legend_rows) {
+      l.legend.assign(ids.begin(), ids.begin() + static_cast<long>(max_legend_rows - 1 - (has_none ? 1 : 0)));
+      if (has_none) l.legend.push_back(-1);
+      l.overflow_text = fmt::format("... {} {}s in all", named, fig.id_name);
+    }
     double text_w = 0;
     for (std::int64_t id : l.legend) text_w = std::max<double>(text_w, text_extent(plain(id_text(fig, id)), st.tick_font).width);
-    if (l.legend.size() < ids.size())
-      text_w = std::max<double>(text_w, text_extent(plain(fmt::format("... {} in all", ids.size())), st.tick_font).width);
+    if (!l.overflow_text.empty())
+      text_w = std::max<double>(text_w, text_extent(plain(l.overflow_text), st.tick_font).width);
     l.legend_swatch = std::max(8.0, 22.0 * st.scale);
     l.legend_row = std::max<double>(l.legend_swatch, row_h) + 0.6 * st.pad;
     strip = 2 * st.pad + l.legend_swatch + 0.7 * st.pad + text_w + st.pad;
@@ -159,7 +165,7 @@ Layout layout(const ParticleFigure& fig) {
     pf.bar_top = static_cast<int>(std::lround(std::max(area_top, mid - 0.5 * bar_h)));
     pf.bar_bottom = static_cast<int>(std::lround(pf.bar_top + bar_h));
   } else {
-    const double rows = static_cast<double>(l.legend.size() + (l.legend.size() < l.distinct_ids ? 1 : 0));
+    const double rows = static_cast<double>(l.legend.size() + (l.overflow_text.empty() ? 0 : 1));
     l.legend_top = std::max(area_top, mid - 0.5 * rows * l.legend_row);
   }
   pf.scale_bar_length = scale_bar_length(0.3 * (x_hi - x_lo));
@@ -262,8 +268,8 @@ cv::Mat render_particle_figure(const ParticleFigure& fig) {
       draw_text(image, plain(id_text(fig, l.legend[r])), {l.legend_left + l.legend_swatch + 0.7 * st.pad, cy},
                 HAlign::left, VAlign::centre, st.tick_font);
     }
-    if (l.legend.size() < l.distinct_ids)
-      draw_text(image, plain(fmt::format("... {} in all", l.distinct_ids)),
+    if (!l.overflow_text.empty())
+      draw_text(image, plain(l.overflow_text),
                 {l.legend_left, l.legend_top + (l.legend.size() + 0.5) * l.legend_row}, HAlign::left,
                 VAlign::centre, st.tick_font);
   }

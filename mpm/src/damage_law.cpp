@@ -34,9 +34,9 @@ double rankine_softening_modulus(double strength, const RankineSoftening& law, d
   return x / (1.0 - x);  // 000 eq. (20): H_s = H̄ l_ch / (1 − H̄ l_ch)
 }
 
-double rankine_largest_cell_size(double strength, const RankineSoftening& law, int dimension) {
-  // H̄ h √D < 1  ⇔  h < 1 / (H̄ √D) = 2 E G_f / (σ_f² √D).
-  return 1.0 / (brittleness(strength, law) * std::sqrt(static_cast<double>(dimension)));
+double rankine_largest_characteristic_length(double strength, const RankineSoftening& law) {
+  // H̄ l_ch < 1  ⇔  l_ch < 1 / H̄ = 2 E G_f / σ_f².
+  return 1.0 / brittleness(strength, law);
 }
 
 // Plane strain (D = 2): the trial stress holds only the in-plane block. At small strain the

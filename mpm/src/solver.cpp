@@ -134,7 +134,7 @@ struct Solver<D>::Impl {
   SeriesRow<D> row;
   double next_dt_limit = 0.0;  ///< CFL limit from the state after the last step (C_cfl included)
   double negligible_mass = 0.0;
-  double characteristic_length = 0.0;  ///< l_ch = cell diagonal (000 eq. 20; 001 §2.7) [m]
+  double kernel_radius = 0.0;  ///< r_p of the damage field = cell diagonal (001 §2.2) [m]
 
   GridIndex<D> grid;
   /// Per node and field (field 1 exists only with partitioning): mass, momentum, force, and the
@@ -162,7 +162,8 @@ struct Solver<D>::Impl {
   NeighbourLists<D> neighbours;
   std::vector<double> particle_dhat, particle_field;  ///< d̂_p = max(s_p, d_p), D̄(x_p)
   std::vector<Vec<D>> particle_gradient;              ///< ∇D̄(x_p) (001 eq. 17-19)
-  std::vector<Vec<D>> node_gradient;                  ///< nonlocal nodal ∇D̄_i (001 Alg. 1)
+  std::vector<Vec<D>> node_gradient;                  ///< nonlocal nodal ∇D̄_i (001 §2.2, Alg. 1)
+  std::vector<Mat<D>> node_gradient_tensor;           ///< Σ_p ∇D̄_p ⊗ ∇D̄_p (principal rule only)
   std::array<std::vector<Vec<D>>, 2> node_mass_gradient;  ///< Σ m_p ∇S̄_ip per field (000 eq. 74)
   std::array<std::vector<double>, 2> node_dhat;           ///< Σ S̄ m_p d̂_p per field (000 eq. 70)
   std::array<std::vector<double>, 2> node_volume;         ///< Σ S̄ V_p per field (004 eq. 11)
@@ -183,7 +184,7 @@ struct Solver<D>::Impl {
     }
     partitioned = partitioning_active(problem);
     by_bodies = problem.contact.partitioning == Partitioning::bodies;
-    characteristic_length = problem.grid.cell_size * std::sqrt(double(D));
+    kernel_radius = problem.grid.cell_size * std::sqrt(double(D));
     grid.origin = problem.grid.min;
     grid.cell_size = problem.grid.cell_size;
     grid.inverse_cell_size = 1.0 / problem.grid.cell_size;
@@ -317,6 +318,8 @@ struct Solver<D>::Impl {
     }
     if (partition_this_step) {
       node_gradient.assign(nodes, Vec<D>::Zero());
+      if (!by_bodies && problem.contact.nodal_gradient == NodalGradientRule::principal)
+        node_gradient_tensor.assign(nodes, Mat<D>::Zero());
       node_dhat_max.assign(nodes, 0.0);
       for (int f = 0; f < 2; ++f) {
         node_mass_gradient[f].assign(nodes, Vec<D>::Zero());
@@ -395,28 +398,47 @@ struct Solver<D>::Impl {
     }
     partition_this_step = any;
     if (!any) return;
-    neighbours.update(P.x, characteristic_length, problem.contact.rebuild_fraction);
-    damage_field_gradient<D>(neighbours, P.x, particle_dhat, characteristic_length, particle_field,
+    neighbours.update(P.x, kernel_radius, problem.contact.rebuild_fraction);
+    damage_field_gradient<D>(neighbours, P.x, particle_dhat, kernel_radius, particle_field,
                              particle_gradient);
   }
 
-  /// 001 Alg. 1: the nodal damage-field gradient is the particle gradient of largest norm among
-  /// the particles that map to the node (ties keep the earlier particle of the scatter order).
+  /// The nonlocal nodal damage-field gradient (001 §2.2). Default: the principal direction of
+  /// Σ_p ∇D̄_p ⊗ ∇D̄_p over the particles mapping to the node, the n maximising Σ_p (n·∇D̄_p)², so
+  /// the opposite gradients on the two faces of a crack reinforce. Alternative: 001 Alg. 1, the
+  /// particle gradient of largest norm (total-order tie-break: independent of the scatter order).
   template <ShapeFunctionKind Kind>
   void nodal_damage_gradient() {
+    if (problem.contact.nodal_gradient == NodalGradientRule::largest) {
+      for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
+        const Vec<D>& g = particle_gradient[p];
+        if (g.squaredNorm() <= 0.0) return;
+        for (int e = 0; e < s.count; ++e)
+          fold_nodal_gradient<D>(g, node_gradient[static_cast<std::size_t>(s.node[e])]);
+      });
+      return;
+    }
     for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
       const Vec<D>& g = particle_gradient[p];
       if (g.squaredNorm() <= 0.0) return;
       for (int e = 0; e < s.count; ++e)
-        fold_nodal_gradient<D>(g, node_gradient[static_cast<std::size_t>(s.node[e])]);
+        if (s.weight[e] > 0.0)
+          accumulate_gradient_tensor<D>(g, node_gradient_tensor[static_cast<std::size_t>(s.node[e])]);
     });
+    const std::int64_t nodes = static_cast<std::int64_t>(node_gradient.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < nodes; ++i)
+      if (node_gradient_tensor[i].squaredNorm() > 0.0)
+        node_gradient[i] = principal_gradient<D>(node_gradient_tensor[i]);
   }
 
-  /// 001 Alg. 2: field 0 when ∇D̄_p · ∇D̄_i ≥ 0, else field 1. With partitioning by bodies the
-  /// field is the body id (two bodies, 004 §2.2 multimaterial contact).
+  /// 001 Alg. 2: field 0 when ∇D̄_p · ∇D̄_i ≥ 0, else field 1; a particle beyond the reach of any
+  /// damage (∇D̄_p = 0) joins the side of the node it lies on instead of always field 0. With
+  /// partitioning by bodies the field is the body id (two bodies, 004 §2.2 multimaterial contact).
   int field_of(std::int64_t p, std::size_t node) const {
     if (by_bodies) return problem.particles.body[p] == 0 ? 0 : 1;
-    return particle_field_at_node<D>(particle_gradient[p], node_gradient[node]);
+    const Vec<D> offset = problem.particles.x[p] - grid.position(grid.global(static_cast<std::int64_t>(node)));
+    return particle_field_at_node<D>(particle_gradient[p], node_gradient[node], offset);
   }
 
   /// 000 eq. (47)-(49): m_i = Σ S̄ m_p, p_i = Σ S̄ m_p v_p, f_i = Σ S̄ (m_p g + f_p) − Σ V_p σ_p ∇S̄,
@@ -669,7 +691,11 @@ struct Solver<D>::Impl {
           const MaterialSpec& spec = problem.materials[material];
           const Mat<D> trial = model.cauchy<D>(P.F[p]);
           const double damage_before = P.damage[p];
-          update_damage<D>(spec.damage, trial, P.strength[p], characteristic_length, dt,
+          // l_ch = particle size: the width of the one-particle band a crack localises in
+          // (see rankine_softening_modulus for why not the paper's cell diagonal).
+          const double particle_size =
+              D == 2 ? std::sqrt(P.volume0[p]) : std::cbrt(P.volume0[p]);
+          update_damage<D>(spec.damage, trial, P.strength[p], particle_size, dt,
                            P.damage_history[p], P.damage[p]);
           const double psi = model.energy_density<D>(P.F[p]);
           if (P.damage[p] > 0.0) {

@@ -129,16 +129,6 @@ std::string field_title(const std::string& what, int frame, double time, double 
                      std::isfinite(travel) ? ", platen " + analysis::format_si(travel, "m", 3) : std::string());
 }
 
-/// Fragment ids for the figure: resolved fragments keep their id, fines and masked particles −1.
-std::vector<std::int64_t> fragment_ids(const analysis::FragmentLabels& labels) {
-  std::vector<std::int64_t> ids(labels.fragment.size(), -1);
-  for (std::size_t p = 0; p < ids.size(); ++p) {
-    const std::int32_t f = labels.fragment[p];
-    if (f >= 0 && !labels.fine[static_cast<std::size_t>(f)]) ids[p] = f;
-  }
-  return ids;
-}
-
 struct RunFacts {
   std::size_t particles = 0, bodies = 0;
   long long steps = 0;
@@ -168,8 +158,8 @@ std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& p
                    r.failed ? ", STOPPED BY A NUMERICAL FAILURE: " + r.failure : std::string());
   const auto& t = r.last.totals;
   const double input = input_energy(r.last);
-  s << fmt::format("energy:     input {} J/m (initial {} + wall work {}); kinetic {}, strain {}, damage dissipation {}, "
-                   "friction {} [J/m]\n",
+  s << fmt::format("energy:     input {:.4g} J/m (initial {:.4g} + wall work {:.4g}); kinetic {:.4g}, strain {:.4g}, "
+                   "damage dissipation {:.4g}, friction {:.4g} [J/m]\n",
                    input, t.initial_energy, t.wall_work, r.last.kinetic, r.last.strain, t.dissipated, t.friction_work);
   s << fmt::format("balance:    error {:.4g} J/m = {:.3g} % of input\n", r.last.balance_error,
                    input > 0 ? 100.0 * std::abs(r.last.balance_error) / input : 0.0);
@@ -335,7 +325,7 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
         const mpm::Particles<2> current = f.frame == last ? particles : file.read_frame(f.frame);
         figure(fmt::format("fragments_{:06d}.png", f.frame), [&](const std::string& path) {
           analysis::write_particle_figure(
-              analysis::fragment_figure(current, fragment_ids(f.fragments.labels), f.time,
+              analysis::fragment_figure(current, analysis::resolved_fragment_ids(f.fragments.labels), f.time,
                                         field_title(fmt::format("{} fragments", f.fragments.summary.fragments), f.frame,
                                                     f.time, f.platen_displacement)),
               path);

@@ -1,4 +1,4 @@
-// `fragmpm render RUN.h5 --field damage|temperature|speed|stress|body [--frame N|last] -o fig.png`
+// `fragmpm render RUN.h5 --field damage|temperature|speed|stress|body|fragment [--frame N|last] -o fig.png`
 // and `fragmpm render RUN.h5 --series energy|force-displacement -o fig.png` (DESIGN §6, §8): off-screen
 // figures of one frame or of the run's /series, with no display needed.
 #include <cctype>
@@ -71,30 +71,54 @@ std::vector<std::string> required_datasets(analysis::FrameField field) {
   return {};
 }
 
+constexpr const char* fragment_field = "fragment";
+
+void require_datasets(const mpm::h5::File& file, int index, const std::vector<std::string>& names,
+                      const RenderArguments& a) {
+  char group[32];
+  std::snprintf(group, sizeof group, "frames/%06d", index);
+  for (const std::string& name : names)
+    if (!file.root().is_dataset(std::string(group) + "/" + name))
+      throw RenderInputError(fmt::format("{}: /{}/{}: not stored in this frame, so the {} figure cannot be "
+                                         "drawn (the scene's output fields decide what frames keep)",
+                                         a.run, group, name, a.field));
+}
+
 void render_field(const RenderArguments& a) {
-  const analysis::FrameField field = analysis::parse_frame_field(a.field);
+  // Fragments are labelled as `fragmpm analyze` does with its default options (DESIGN §6): frame 0
+  // is the reference configuration whose neighbours may stay bonded.
+  const bool fragments = a.field == fragment_field;
+  const analysis::FrameField field = fragments ? analysis::FrameField::damage : analysis::parse_frame_field(a.field);
   int index = 0;
   double time = 0.0;
   long long step = 0;
-  mpm::Particles<2> particles;
+  mpm::Particles<2> particles, reference;
   {
     const mpm::RunFile<2> file = mpm::RunFile<2>::open_existing(a.run);
     index = frame_index(a.frame, file.frame_count(), a.run);
+    {
+      const mpm::h5::File h5 = mpm::h5::File::open(a.run, false);
+      const std::vector<std::string> fragment_data{"r1", "r2", "damage", "body"};
+      require_datasets(h5, index, fragments ? fragment_data : required_datasets(field), a);
+      if (fragments) require_datasets(h5, 0, fragment_data, a);
+    }
     particles = file.read_frame(index, &time, &step);
-  }
-  char group[32];
-  std::snprintf(group, sizeof group, "frames/%06d", index);
-  {
-    const mpm::h5::File file = mpm::h5::File::open(a.run, false);
-    for (const std::string& name : required_datasets(field))
-      if (!file.root().is_dataset(std::string(group) + "/" + name))
-        throw RenderInputError(fmt::format("{}: /{}/{}: not stored in this frame, so the {} figure cannot be "
-                                           "drawn (the scene's output fields decide what frames keep)",
-                                           a.run, group, name, a.field));
+    if (fragments) reference = index == 0 ? particles : file.read_frame(0);
   }
   const std::string title = fmt::format("{} - frame {} (step {}) of {}", a.field, index, step,
                                         std::filesystem::path(a.run).filename().string());
-  analysis::ParticleFigure figure = analysis::frame_figure(particles, field, time, title);
+  analysis::ParticleFigure figure;
+  if (fragments) {
+    if (reference.size() != particles.size())
+      throw RenderInputError(fmt::format("{}: frame {} has {} particles but the reference frame 0 has {}", a.run,
+                                         index, particles.size(), reference.size()));
+    const analysis::FragmentLabels labels = analysis::label_fragments(reference, particles);
+    figure = analysis::fragment_figure(particles, analysis::resolved_fragment_ids(labels), time,
+                                       fmt::format("{} fragments - frame {} (step {}) of {}", labels.resolved(), index,
+                                                   step, std::filesystem::path(a.run).filename().string()));
+  } else {
+    figure = analysis::frame_figure(particles, field, time, title);
+  }
   figure.width = a.width;
   figure.height = a.height;
   analysis::write_particle_figure(figure, a.output);
@@ -129,7 +153,12 @@ int execute(const RenderArguments& a) {
       throw RenderInputError("give either --field (a frame figure) or --series (a plot over time), not both");
     if (!a.series.empty() && a.frame_given)
       throw RenderInputError("--frame applies to --field figures; --series plots cover the whole run");
-    if (!a.field.empty()) analysis::parse_frame_field(a.field);  // fail before touching any file
+    if (!a.field.empty() && a.field != fragment_field)
+      try {
+        analysis::parse_frame_field(a.field);  // fail before touching any file
+      } catch (const analysis::FigureError& e) {
+        throw RenderInputError(std::string(e.what()) + " or fragment");
+      }
     std::string extension = std::filesystem::path(a.output).extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (extension != ".png")
@@ -148,6 +177,8 @@ int execute(const RenderArguments& a) {
     std::fprintf(stderr, "fragmpm render: %s\n", e.what());
   } catch (const mpm::RunFileError& e) {
     std::fprintf(stderr, "fragmpm render: %s\n", e.what());
+  } catch (const std::invalid_argument& e) {  // label_fragments: frame data it cannot label
+    std::fprintf(stderr, "fragmpm render: %s: %s\n", a.run.c_str(), e.what());
   }
   return 2;
 }
@@ -160,7 +191,7 @@ void add_render_command(CLI::App& app, CommandResult& result) {
       "render", "Draw a figure of a run file as PNG, off-screen: a frame's particles coloured by a field, "
                 "or the energy balance / force-displacement over the run");
   render->add_option("run", args->run, "Run file (HDF5) written by `fragmpm run`")->required();
-  render->add_option("--field", args->field, "Frame figure: damage, temperature, speed, stress or body");
+  render->add_option("--field", args->field, "Frame figure: damage, temperature, speed, stress, body or fragment (labelled as analyze does)");
   render->add_option("--series", args->series, "Plot over the run: energy or force-displacement");
   render->add_option("--frame", args->frame, "Frame number, or 'last' (default)")
       ->each([args](const std::string&) { args->frame_given = true; });

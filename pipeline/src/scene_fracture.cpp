@@ -61,20 +61,24 @@ std::string plain(double v) {
   return buf;
 }
 
-/// The snap-back check of 000 eq. (20-21) for one strength: H̄ l_ch < 1 with l_ch the cell diagonal.
+/// The snap-back check of 000 eq. (20-21) for one strength: H̄ l_ch < 1 with l_ch the particle
+/// size (the solver's characteristic length; see rankine_softening_modulus).
 void check_softening(const Section& m, const mpm::MaterialSpec& spec, const mpm::RankineSoftening& law,
-                     double strength, const std::string& which_strength, const mpm::GridSpec<2>& grid) {
-  const double l_ch = grid.cell_size * std::sqrt(2.0);
+                     double strength, const std::string& which_strength, const mpm::GridSpec<2>& grid,
+                     double particle_spacing) {
+  const double l_ch = particle_spacing;
   if (std::isfinite(mpm::rankine_softening_modulus(strength, law, l_ch))) return;
   const double hbar_l = strength * strength * l_ch / (2.0 * law.youngs_modulus * law.fracture_energy);
-  const double h_max = mpm::rankine_largest_cell_size(strength, law, 2);
+  // Particles per cell stay fixed, so the cell size scales with the particle size.
+  const double h_max =
+      mpm::rankine_largest_characteristic_length(strength, law) * grid.cell_size / particle_spacing;
   const double gf_min = strength * strength * l_ch / (2.0 * law.youngs_modulus);
   m.fail("fracture_energy",
          "expected a cell fine enough for the softening of material '" + spec.name +
              "': cell too coarse for this material (snap-back), H̄ l_ch = σ_f² l_ch / (2 E G_f) = " +
              plain(hbar_l) + " >= 1 with σ_f = " + si(strength, "Pa") + " (" +
              which_strength + "), E = " + si(law.youngs_modulus, "Pa") + ", G_f = " +
-             si(law.fracture_energy, "J/m2") + " and l_ch = cell diagonal " + si(l_ch, "m") +
+             si(law.fracture_energy, "J/m2") + " and l_ch = particle size " + si(l_ch, "m") +
              " (grid.cell_size = " + si(grid.cell_size, "m") + "); the largest admissible cell size is " +
              si(h_max, "m") + " (strictly below), or a fracture energy above " + si(gf_min, "J/m2") +
              " at this cell size (000 eq. 20-21)");
@@ -136,9 +140,9 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     if (spec.weibull)
       check_softening(m, spec, r,
                       mpm::weibull_median_strength(particle_spacing * particle_spacing, spec.weibull_strength, 2),
-                      "the Weibull median at the particle volume", grid);
+                      "the Weibull median at the particle volume", grid, particle_spacing);
     else
-      check_softening(m, spec, r, spec.strength, "strength", grid);
+      check_softening(m, spec, r, spec.strength, "strength", grid, particle_spacing);
   } else {
     if (m.has("fracture_energy"))
       m.fail("fracture_energy", "expected fracture_energy only with damage = \"rankine\", got it with \"time-to-failure\"");
@@ -247,13 +251,17 @@ mpm::FrictionLaw read_friction(const Section& s, std::string_view k) {
 
 mpm::ContactSpec<2> read_contact(const Section& c) {
   c.allow_only({"partitioning", "friction", "critical_damage", "minimum_damage", "rebuild_fraction", "gap_test",
-                "normal"});
+                "normal", "nodal_gradient"});
   mpm::ContactSpec<2> spec;
   const std::string partitioning = c.optional_string("partitioning").value_or("auto");
   if (partitioning == "auto") spec.partitioning = mpm::Partitioning::automatic;
   else if (partitioning == "off") spec.partitioning = mpm::Partitioning::off;
   else if (partitioning == "bodies") spec.partitioning = mpm::Partitioning::bodies;
   else c.expected("partitioning", "one of \"auto\", \"off\", \"bodies\"");
+  const std::string nodal = c.optional_string("nodal_gradient").value_or("principal");
+  if (nodal == "principal") spec.nodal_gradient = mpm::NodalGradientRule::principal;
+  else if (nodal == "largest") spec.nodal_gradient = mpm::NodalGradientRule::largest;
+  else c.expected("nodal_gradient", "one of \"principal\" (structure tensor), \"largest\" (001 Alg. 1)");
   if (c.has("friction")) spec.friction = read_friction(c, "friction");
   if (auto d = c.optional_number("critical_damage")) {
     if (!(*d > 0.0 && *d <= 1.0)) c.expected("critical_damage", "a damage level 0 < D_cr <= 1");

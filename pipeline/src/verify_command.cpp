@@ -72,9 +72,10 @@ int execute(const VerifyArguments& args) {
   }
   if (selected.empty())
     for (const auto& c : verify_cases()) selected.push_back(&c);
+  std::vector<std::string> missed;
   for (const VerifyCase* c : selected) {
     try {
-      report_case(args.output, c->name, c->run(options));
+      if (!report_case(args.output, c->name, c->run(options))) missed.push_back(c->name);
     } catch (const SceneError& e) {
       std::fprintf(stderr, "fragmpm verify %s: scene error: %s\n", c->name.c_str(), e.what());
       return 2;
@@ -82,6 +83,12 @@ int execute(const VerifyArguments& args) {
       std::fprintf(stderr, "fragmpm verify %s: %s\n", c->name.c_str(), e.what());
       return 3;
     }
+  }
+  if (!missed.empty()) {
+    std::printf("\nverify: target missed in");
+    for (const auto& name : missed) std::printf(" %s", name.c_str());
+    std::printf(" (exit code 1)\n");
+    return 1;
   }
   return 0;
 }

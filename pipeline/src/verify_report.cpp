@@ -16,7 +16,7 @@ double observed_order(const VerifyRow& coarse, const VerifyRow& fine) {
   return std::log(coarse.error / fine.error) / std::log(coarse.cell_size / fine.cell_size);
 }
 
-void report_case(const std::string& directory, const std::string& case_name,
+bool report_case(const std::string& directory, const std::string& case_name,
                  const std::vector<VerifyRow>& rows) {
   std::filesystem::create_directories(directory);
   const std::string path = (std::filesystem::path(directory) / (case_name + ".csv")).string();
@@ -27,9 +27,10 @@ void report_case(const std::string& directory, const std::string& case_name,
     csv << r.case_name << ',' << r.variant << ',' << r.level << ',' << r.cell_size << ','
         << r.particles << ',' << r.dt << ',' << r.steps << ',' << r.wall_seconds << ',' << r.metric
         << ',' << r.value << ',' << r.reference << ',' << r.error << '\n';
-  std::printf("\n%s\n%-8s %-5s %11s %9s %10s %7s %8s  %-28s %12s %12s %10s %6s\n", case_name.c_str(),
+  std::printf("\n%s\n%-8s %-5s %11s %9s %10s %7s %8s  %-28s %12s %12s %10s %6s  %s\n", case_name.c_str(),
               "variant", "level", "h [m]", "particles", "dt [s]", "steps", "wall [s]", "metric",
-              "value", "reference", "error", "order");
+              "value", "reference", "error", "order", "target");
+  bool all_passed = true;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const VerifyRow& r = rows[i];
     double order = std::numeric_limits<double>::quiet_NaN();
@@ -40,9 +41,15 @@ void report_case(const std::string& directory, const std::string& case_name,
       }
     char order_text[16] = "";
     if (std::isfinite(order)) std::snprintf(order_text, sizeof order_text, "%6.2f", order);
-    std::printf("%-8s %-5d %11.4e %9lld %10.3e %7lld %8.2f  %-28s %12.5e %12.5e %10.3e %6s\n",
+    char target_text[80] = "";
+    if (r.has_target()) {
+      std::snprintf(target_text, sizeof target_text, "[%.5g, %.5g] %s", r.target_low, r.target_high,
+                    r.passed() ? "PASS" : "FAIL");
+      all_passed = all_passed && r.passed();
+    }
+    std::printf("%-8s %-5d %11.4e %9lld %10.3e %7lld %8.2f  %-28s %12.5e %12.5e %10.3e %6s  %s\n",
                 r.variant.c_str(), r.level, r.cell_size, r.particles, r.dt, r.steps, r.wall_seconds,
-                r.metric.c_str(), r.value, r.reference, r.error, order_text);
+                r.metric.c_str(), r.value, r.reference, r.error, order_text, target_text);
   }
   csv.close();
   std::printf("written %s\n", path.c_str());
@@ -53,6 +60,7 @@ void report_case(const std::string& directory, const std::string& case_name,
   } catch (const std::exception& e) {
     std::printf("no error-versus-time figure for %s: %s\n", case_name.c_str(), e.what());
   }
+  return all_passed;
 }
 
 }  // namespace fragmpm::pipeline

@@ -2,6 +2,7 @@
 // Shared driver of the verification cases that run a scene to an end time and look at the state
 // along the way.
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -9,6 +10,13 @@
 #include "fragmpm/pipeline/verify.hpp"
 
 namespace fragmpm::pipeline {
+
+/// One progress line per finished run on stderr (verification runs take minutes each).
+inline void announce_run(const std::string& what, std::size_t particles, long long steps, double time,
+                         double wall_seconds) {
+  std::fprintf(stderr, "  %s: %zu particles, %lld steps to t = %.4g s in %.1f s\n", what.c_str(), particles, steps,
+               time, wall_seconds);
+}
 
 struct TimedRun {
   double wall_seconds = 0.0;
@@ -40,6 +48,7 @@ TimedRun run_until(mpm::Solver<2>& solver, double end_time, const std::string& c
   }
   run.steps = solver.step_count();
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  announce_run(case_name, solver.particles().size(), run.steps, solver.time(), run.wall_seconds);
   return run;
 }
 

@@ -13,6 +13,7 @@
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/sliding_block_oracle.hpp"
 #include "fragmpm/pipeline/verify.hpp"
+#include "verify_run.hpp"
 
 namespace fragmpm::pipeline {
 
@@ -125,6 +126,9 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
     largest_dt = std::max(largest_dt, solver.last_row().dt);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  announce_run("sliding-block " + variant.name + (computed_normal ? "-computed-normal" : "") + " h = " +
+                   toml_number(cell_size) + " m",
+               solver.particles().size(), solver.step_count(), solver.time(), wall);
   const mpm::Particles<2>& P = solver.particles();
   double mass = 0.0, momentum = 0.0;
   for (std::size_t p = 0; p < P.size(); ++p)
@@ -149,7 +153,13 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
   rows[1].metric = "friction_work_J/m";
   rows[1].value = solver.accumulators().friction_work;
   rows[1].reference = reference.friction_work;
-  for (VerifyRow& row : rows) row.error = std::abs(row.value - row.reference) / std::abs(row.reference);
+  for (VerifyRow& row : rows) {
+    row.error = std::abs(row.value - row.reference) / std::abs(row.reference);
+    if (!computed_normal) {  // issue 3: within 2 % for all four laws (the specified normal, as in 004)
+      row.target_low = row.reference - 0.02 * std::abs(row.reference);
+      row.target_high = row.reference + 0.02 * std::abs(row.reference);
+    }
+  }
   return rows;
 }
 
@@ -167,8 +177,9 @@ std::vector<VerifyRow> verify_sliding_block_level(const std::string& variant_nam
 
 std::vector<VerifyRow> verify_sliding_block(const VerifyOptions& options) {
   // 5 mm is the paper's grid; finer levels halve it (the interface stays on a grid line).
-  const std::vector<double> cells = options.quick ? std::vector<double>{5e-3, 2.5e-3}
-                                                  : std::vector<double>{5e-3, 2.5e-3, 1.25e-3};
+  // (13.4 ms of sliding is 13 000 steps at 5 mm, 26 000 at 2.5 mm: the finer level takes minutes.)
+  const std::vector<double> cells = options.quick ? std::vector<double>{5e-3}
+                                                  : std::vector<double>{5e-3, 2.5e-3};
   std::vector<VerifyRow> rows;
   for (const std::string name : {"coulomb", "velocity-dependent", "adhesion", "static-dynamic",
                                  "coulomb-computed-normal"})

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <limits>
 #include <numbers>
 
 #include "fragmpm/mpm/solver.hpp"
@@ -33,7 +35,9 @@ struct Tracker {
 };
 
 using SceneSetup = std::function<void(mpm::Problem<2>&)>;
-using ExtraChecks = std::function<void(const mpm::Solver<2>&, const Tracker&, StabilityResult&)>;
+/// Scene-specific checks at the end: the solver, the tracker and the initial particle positions.
+using ExtraChecks = std::function<void(const mpm::Solver<2>&, const Tracker&, const std::vector<mpm::Vec<2>>&,
+                                       StabilityResult&)>;
 
 /// `created_limit`: largest energy created, as a fraction of the energy input. Explicit stepping
 /// makes kinetic + strain energy oscillate by O(ω Δt) around a conserved value, so a scene run at
@@ -47,6 +51,7 @@ StabilityResult run_scene(const std::string& name, const SceneSetup& setup, bool
                                         "scenes/stability/" + name + ".toml");
   if (setup) setup(problem);
   const std::size_t particle_count = problem.particles.size();
+  const std::vector<mpm::Vec<2>> initial_positions = problem.particles.x;
   mpm::Solver<2> solver(std::move(problem));
   const auto& stop = solver.problem().stop;
   const mpm::Vec<2> momentum0 = solver.last_row().momentum;
@@ -101,11 +106,78 @@ StabilityResult run_scene(const std::string& name, const SceneSetup& setup, bool
       const double drift = t.max_momentum_drift / std::max(momentum_scale, 1e-300);
       add(check_line("momentum drift / Σ m|v| (max)", drift, 1e-10, drift <= 1e-10), drift <= 1e-10);
     }
-    if (extra) extra(solver, t, result);
+    if (extra) extra(solver, t, initial_positions, result);
   }
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+void require(StabilityResult& r, const std::string& what, double value, double limit, bool ok, const char* unit = "") {
+  r.checks.push_back(check_line(what, value, limit, ok, unit));
+  r.passed = r.passed && ok;
+}
+
+/// 500 m/s on a rigid wall (~70× the strength): most of the disk fails, no particle is flung
+/// faster than twice the impact speed, and none passes the wall by more than half a particle.
+void shatter_checks(const mpm::Solver<2>& solver, const Tracker&, const std::vector<mpm::Vec<2>>&,
+                    StabilityResult& r) {
+  const auto& P = solver.particles();
+  std::size_t failed = 0;
+  double fastest = 0.0, lowest_x = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    if (P.damage[p] >= 0.99) ++failed;
+    fastest = std::max(fastest, P.v[p].norm());
+    lowest_x = std::min(lowest_x, P.x[p][0]);
+  }
+  const double fraction = double(failed) / double(P.size());
+  require(r, "failed fraction (d >= 0.99)", fraction, 0.5, fraction >= 0.5);
+  require(r, "fastest particle", fastest, 1000.0, fastest <= 1000.0, "m/s");
+  const double spacing = solver.problem().grid.cell_size / 2.0;
+  require(r, "lowest particle x (wall at 0)", lowest_x, -0.5 * spacing, lowest_x >= -0.5 * spacing, "m");
+}
+
+/// The one-particle neck breaks under the centripetal load: the lobes end farther apart than
+/// they started (helper run: 2.60 → 3.29 mm).
+void neck_checks(const mpm::Solver<2>& solver, const Tracker&, const std::vector<mpm::Vec<2>>& x0,
+                 StabilityResult& r) {
+  mpm::Vec<2> left = mpm::Vec<2>::Zero(), right = left, left0 = left, right0 = left;
+  double nl = 0.0, nr = 0.0;
+  for (std::size_t p = 0; p < x0.size(); ++p) {
+    if (x0[p][0] < -0.5e-3) left += solver.particles().x[p], left0 += x0[p], nl += 1.0;
+    else if (x0[p][0] > 0.5e-3) right += solver.particles().x[p], right0 += x0[p], nr += 1.0;
+  }
+  const double start = (right0 / nr - left0 / nl).norm(), end = (right / nr - left / nl).norm();
+  require(r, "lobe distance end / start (neck broken)", end / start, 1.1, end / start >= 1.1);
+}
+
+/// No fine ends inside the grain: every fine particle stays at least R − s from its centre.
+void fines_checks(const mpm::Solver<2>& solver, const Tracker&, const std::vector<mpm::Vec<2>>&,
+                  StabilityResult& r) {
+  const auto& P = solver.particles();
+  mpm::Vec<2> centre = mpm::Vec<2>::Zero();
+  double n = 0.0;
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (P.body[p] == 0) centre += P.x[p], n += 1.0;
+  centre /= n;
+  double closest = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (P.body[p] != 0) closest = std::min(closest, (P.x[p] - centre).norm());
+  const double limit = 1e-3 - solver.problem().grid.cell_size / 2.0;  // R − s
+  require(r, "closest fine particle to the grain centre", closest, limit, closest >= limit, "m");
+}
+
+/// Three bodies at one node with two fields: no two particles of different bodies come closer
+/// than a quarter of the particle spacing.
+void triple_junction_checks(const mpm::Solver<2>& solver, const Tracker&, const std::vector<mpm::Vec<2>>&,
+                            StabilityResult& r) {
+  const auto& P = solver.particles();
+  double closest = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < P.size(); ++p)
+    for (std::size_t q = p + 1; q < P.size(); ++q)
+      if (P.body[p] != P.body[q]) closest = std::min(closest, (P.x[p] - P.x[q]).norm());
+  const double limit = solver.problem().grid.cell_size / 8.0;  // s/4 with s = h/2
+  require(r, "closest particles of different bodies", closest, limit, closest >= limit, "m");
 }
 
 }  // namespace
@@ -116,7 +188,7 @@ std::vector<StabilityResult> run_stability(const VerifyOptions&) {
   results.push_back(run_scene("nearly-incompressible", nullptr, false, false, nullptr));
   results.push_back(run_scene(
       "spinning-disk", nullptr, true, true,
-      [](const mpm::Solver<2>& solver, const Tracker& t, StabilityResult& r) {
+      [](const mpm::Solver<2>& solver, const Tracker& t, const std::vector<mpm::Vec<2>>&, StabilityResult& r) {
         // Two sources of stress in a free rigid rotation: the centrifugal one of a spinning elastic
         // disk, ρω²R²(3+ν)/8 (plane stress; plane strain is within 10 %), overshot by at most a
         // factor of two by the sudden spin-up; and forward particle advection, which moves each
@@ -148,6 +220,10 @@ std::vector<StabilityResult> run_stability(const VerifyOptions&) {
         problem.time.fixed_dt = 0.99 * mpm::stable_time_step<2>(problem, problem.particles, 1.0);
       },
       true, false, nullptr, 0.05));
+  results.push_back(run_scene("shatter-500", nullptr, false, false, shatter_checks));
+  results.push_back(run_scene("one-particle-neck", nullptr, true, false, neck_checks));
+  results.push_back(run_scene("fines", nullptr, true, false, fines_checks));
+  results.push_back(run_scene("triple-junction", nullptr, true, false, triple_junction_checks));
   return results;
 }
 

@@ -411,6 +411,23 @@ TEST(RenderCommand, RendersATinyRunFileToThePngSizeAsked) {
             2);
   EXPECT_EQ(run_fragmpm("render " + run + " --field speed -o " + (dir / "speed.png").string(), dir / "log"), 0)
       << read_text(dir / "log");
+  // Fragments, labelled as analyze does: the two bodies of frame 0 are two fragments of 25 particles
+  // each, drawn in the first two categorical colours in equal areas.
+  const std::string fragments_png = (dir / "fragments.png").string();
+  ASSERT_EQ(run_fragmpm("render " + run + " --field fragment --frame 0 -o " + fragments_png, dir / "log"), 0)
+      << read_text(dir / "log");
+  image = cv::imread(fragments_png);
+  int first = 0, second = 0;
+  for (int y = 0; y < image.rows; ++y)
+    for (int x = 0; x < image.cols; ++x) {
+      first += is_colour(image.at<cv::Vec3b>(y, x), categorical_colour(0)) ? 1 : 0;
+      second += is_colour(image.at<cv::Vec3b>(y, x), categorical_colour(1)) ? 1 : 0;
+    }
+  EXPECT_GT(first, 50000);
+  EXPECT_NEAR(static_cast<double>(second) / first, 1.0, 0.05);
+  EXPECT_EQ(run_fragmpm("render " + run + " --field fragment --frame 1 -o " + (dir / "f1.png").string(), dir / "log"),
+            2);
+  EXPECT_NE(read_text(dir / "log").find("/frames/000001/damage"), std::string::npos) << read_text(dir / "log");
   EXPECT_EQ(run_fragmpm("render " + run + " --series energy -o " + (dir / "energy.png").string(), dir / "log"), 0)
       << read_text(dir / "log");
   EXPECT_EQ(run_fragmpm("render " + run + " --series force-displacement -o " + (dir / "fd.png").string(), dir / "log"),
@@ -443,4 +460,73 @@ TEST(SeriesFigures, FixedWallReactionIsPlottedAgainstTime) {
   EXPECT_DOUBLE_EQ(spec.series[0].x[3], 6.0);   // 6 µs
   EXPECT_DOUBLE_EQ(spec.series[0].y[3], 15.0);  // 15 kN/m
   EXPECT_THROW(force_displacement_spec(run, {}), FigureError);
+}
+
+TEST(SeriesFigures, LongRunsPlotWindowMeansOfTheForce) {
+  // 2000 steps of Δt = 1 ns under a steady 5 kN/m on a platen moving at 1 m/s, except that every
+  // 100th step is cut to 1 ps and carries an 11 ns-worth impulse, as when the wall plane passes a row
+  // of grid nodes. A load cell reads impulse over time: a window of 4.95 ns (400 windows) that holds
+  // a spike and at least 4 ordinary steps reads at most 5 kN/m · (4 + 11) / 4 = 18.75 kN/m, not the
+  // 55 GN/m of the spike's own step; every other window reads exactly 5 kN/m.
+  const fs::path dir = figure_directory("window_means");
+  const std::string run = (dir / "crush.h5").string();
+  const int n = 2000;
+  {
+    mpm::RunMeta meta;
+    meta.wall_names = {"platen"};
+    auto file = mpm::RunFile<2>::create(run, meta, true);
+    std::vector<mpm::SeriesRow<2>> rows(n);
+    double t = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const bool spike = k % 100 == 50;
+      rows[k].step = k + 1;
+      rows[k].dt = spike ? 1e-12 : 1e-9;
+      t += rows[k].dt;
+      rows[k].time = t;
+      const double force = spike ? 5e3 * 11e-9 / 1e-12 : 5e3;
+      rows[k].wall_force = {mpm::Vec<2>(0.0, force)};
+      rows[k].wall_displacement = {mpm::Vec<2>(0.0, -1.0 * t)};
+    }
+    file.append_series(rows);
+  }
+  const PlotSpec spec = force_displacement_spec(run, {"platen"});
+  ASSERT_EQ(spec.series.size(), 1u);
+  const LineSeries& s = spec.series[0];
+  EXPECT_NE(spec.title.find("means over"), std::string::npos) << spec.title;
+  EXPECT_EQ(s.y.size(), 400u);
+  EXPECT_EQ(spec.y_label, "reaction force |F| [kN/m]");
+  int spikes = 0;
+  for (double f : s.y) {
+    EXPECT_GE(f, 5.0 - 1e-9);
+    EXPECT_LE(f, 18.75 + 1e-6);
+    if (f > 5.0 + 1e-9) ++spikes;
+  }
+  EXPECT_EQ(spikes, n / 100);
+  EXPECT_EQ(spec.x_label, "wall displacement |u| [\u00b5m]");
+  EXPECT_NEAR(s.x.back(), 1.98 - 0.5 * 0.00495, 1e-3);  // mean travel over the last window [µm]
+}
+
+TEST(FrameFigure, StressColourRangeIsClippedToThePercentilesOfLargeFrames) {
+  mpm::Particles<2> p;
+  const int n = 1001;
+  p.resize(n);
+  for (int i = 0; i < n; ++i) {
+    p.x[i] = mpm::Vec<2>(1e-4 * i, 0.0);
+    p.domain[i] << 1e-4, 0.0, 0.0, 1e-4;
+    p.stress[i] << -1e6 * i, 0.0, 0.0, -2e9;  // max principal: −i MPa
+  }
+  p.stress[0] << 5e9, 0.0, 0.0, -2e9;  // one extreme particle
+  ParticleFigure f = frame_figure(p, FrameField::stress, 0.0, "s");
+  ASSERT_TRUE(f.vmin && f.vmax);
+  EXPECT_DOUBLE_EQ(*f.vmin, -990.0);  // 1st percentile of {5000, −1, …, −1000}: the 11th smallest
+  EXPECT_DOUBLE_EQ(*f.vmax, -10.0);
+  EXPECT_NE(f.field_name.find("1-99 %"), std::string::npos);
+  p.resize(100);  // too few particles for percentiles: the full range
+  f = frame_figure(p, FrameField::stress, 0.0, "s");
+  EXPECT_FALSE(f.vmin.has_value());
+  EXPECT_EQ(f.field_name, "max principal stress");
+}
+
+TEST(ParticleFigure, NoIdSharesTheGreyOfNone) {
+  for (std::int64_t id = 0; id < 1000; ++id) ASSERT_NE(categorical_colour(id), no_data_colour()) << id;
 }

@@ -54,17 +54,13 @@ TEST(DamageLaw, SofteningModulusAndSnapBackLimit) {
   const double l = 0.4e-3;
   EXPECT_NEAR(mpm::rankine_softening_modulus(kStrength, rankine(), l), Hbar * l / (1.0 - Hbar * l), 1e-12);
 
-  // Largest cell: H̄ h √D = 1 → h = 2 E G_f / (σ_f² √D).
-  for (int D : {2, 3}) {
-    const double h_max = mpm::rankine_largest_cell_size(kStrength, rankine(), D);
-    EXPECT_NEAR(h_max, 2.0 * kE * kGf / (kStrength * kStrength * std::sqrt(D)), 1e-15);
-    const double l_ok = 0.999 * h_max * std::sqrt(D), l_bad = h_max * std::sqrt(D);
-    EXPECT_GT(mpm::rankine_softening_modulus(kStrength, rankine(), l_ok), 0.0);
-    EXPECT_TRUE(std::isnan(mpm::rankine_softening_modulus(kStrength, rankine(), l_bad)));
-    EXPECT_TRUE(std::isnan(mpm::rankine_softening_modulus(kStrength, rankine(), 2.0 * l_bad)));
-  }
-  // 2D: h_max = 1/(H̄ √2) = 0.396 mm for this glass.
-  EXPECT_NEAR(mpm::rankine_largest_cell_size(kStrength, rankine(), 2), 1.0 / (Hbar * std::sqrt(2.0)), 1e-15);
+  // Largest characteristic length: H̄ l_ch = 1 → l_ch = 2 E G_f / σ_f² (0.56 mm for this glass).
+  const double l_max = mpm::rankine_largest_characteristic_length(kStrength, rankine());
+  EXPECT_NEAR(l_max, 2.0 * kE * kGf / (kStrength * kStrength), 1e-15);
+  EXPECT_NEAR(l_max, 1.0 / Hbar, 1e-15);
+  EXPECT_GT(mpm::rankine_softening_modulus(kStrength, rankine(), 0.999 * l_max), 0.0);
+  EXPECT_TRUE(std::isnan(mpm::rankine_softening_modulus(kStrength, rankine(), l_max)));
+  EXPECT_TRUE(std::isnan(mpm::rankine_softening_modulus(kStrength, rankine(), 2.0 * l_max)));
 }
 
 TEST(DamageLaw, RankineFollowsEquation20AlongUniaxialTensionAndSoftensLinearly) {
@@ -104,7 +100,7 @@ TEST(DamageLaw, RankineFollowsEquation20AlongUniaxialTensionAndSoftensLinearly) 
 }
 
 TEST(DamageLaw, OneSofteningElementDissipatesFractureEnergyTimesArea) {
-  // A bar element of length l_ch (the cell diagonal) and cross-section A pulled until it fails
+  // A bar element of length l_ch (one particle of the crack band) and cross-section A pulled until it fails
   // dissipates G_f A: Σ Δd ψ_t V with V = l_ch A.
   const mpm::NeoHookean m = glass();
   const double area = 2.5e-6;  // m²

@@ -16,6 +16,7 @@
 
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/pipeline_job.hpp"
+#include "fragmpm/pipeline/scene.hpp"
 
 namespace fs = std::filesystem;
 namespace fp = fragmpm::pipeline;
@@ -111,6 +112,38 @@ TEST(PipelineScene, DemoSceneHasAnImageBody) {
   EXPECT_EQ(t["bodies"][0]["image"].value<std::string>(), "/x/y.png");
 }
 
+TEST(PipelineScene, DemoSceneCrushesSeveralGrainsBetweenPlatens) {
+  // The embedded demo on the shipped image: several grains (000 §4.5.1 needs grains to crush against
+  // each other), a platen that moves and a stop on its travel large enough for the grains to crack —
+  // at least 20 % of the window height (150 um) — reached before the end time.
+  const std::string text = fp::scene_with_image(fp::embedded_scene("demo/sandstone-crush.toml"), "demo", kImage);
+  const auto problem = fp::parse_scene(text, "demo");
+  EXPECT_GE(problem.body_names.size(), 5u);
+  EXPECT_GT(problem.particles.size(), 1000u);
+  ASSERT_GE(problem.stop.platen, 0);
+  const auto& platen = problem.walls.at(static_cast<std::size_t>(problem.stop.platen));
+  EXPECT_EQ(platen.name, "platen");
+  EXPECT_GE(problem.stop.platen_displacement, 0.2 * 150e-6);
+  EXPECT_GE(platen.velocity.displacement(problem.stop.end_time).norm(), problem.stop.platen_displacement);
+  // The platen touches grains from the start, so it starts at rest: at full speed (20 m/s) at once it
+  // would send a rho c v = 210 MPa wave through grains of 25 MPa tensile strength.
+  EXPECT_EQ(platen.velocity.velocity(0.0).norm(), 0.0);
+  EXPECT_GT(platen.velocity.velocity(problem.stop.end_time).norm(), 10.0);
+}
+
+TEST(DemoCommand, RefusesNonEmptyDirectoryBeforeSimulating) {
+  const fs::path dir = fresh_directory("demo_refuse");
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "keep.txt") << "mine\n";
+  EXPECT_EQ(run_fragmpm("demo -q -o " + out.string(), dir / "log.txt"), 2);
+  const std::string log = read_text(dir / "log.txt");
+  EXPECT_NE(log.find("fragmpm demo: -o " + out.string()), std::string::npos) << log;
+  EXPECT_NE(log.find("--overwrite"), std::string::npos) << log;
+  EXPECT_EQ(read_text(out / "keep.txt"), "mine\n");
+  EXPECT_FALSE(fs::exists(out / "run.h5"));
+}
+
 TEST(PipelineScene, SceneWithoutImageBodyIsRejected) {
   EXPECT_THROW(fp::scene_with_image("[[bodies]]\nname = \"a\"\nshape = \"disk\"\n", "s.toml", "/x.png"),
                fp::PipelineError);
@@ -169,9 +202,19 @@ TEST(PipelineCommand, TinyRunWritesEverything) {
   EXPECT_TRUE(fs::exists(out / "figures" / "damage_last.png"));
   EXPECT_TRUE(fs::exists(out / "figures" / "energy.png"));
   EXPECT_TRUE(fs::exists(out / "fragments" / "fragment_series.csv"));
+  for (const char* file : {"figures/speed_last.png", "figures/stress_last.png", "figures/body_last.png",
+                           "figures/force_displacement.png", "fragments/cdf_equivalent_diameter.png",
+                           "fragments/cdf_equivalent_diameter_mass.png", "fragments/cdf_roundness.png",
+                           "fragments/cdf_roundness_mass.png", "fragments/fragment_count.png",
+                           "fragments/fragment_size.png"})
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  // Frames 0, 1, 2 (0.1 us at 0.05 us intervals): the default analysis includes the last.
+  EXPECT_TRUE(fs::exists(out / "fragments" / "fragments_000002.csv"));
+  EXPECT_TRUE(fs::exists(out / "figures" / "fragments_000002.png"));
   const std::string summary = read_text(out / "summary.txt");
   EXPECT_NE(summary.find("grains:"), std::string::npos) << summary;
   EXPECT_NE(summary.find("% of input"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("fragments (resolved; fines apart)"), std::string::npos) << summary;
   EXPECT_NE(summary.find("wall time:"), std::string::npos) << summary;
   EXPECT_NE(log.find(summary.substr(0, 24)), std::string::npos);  // the summary is printed too
 }

@@ -417,6 +417,10 @@ struct BadScene {
   std::string explanation;  ///< a piece of the message
 };
 
+/// gtest prints each parameter beside the test name (and CMake's test discovery copies that into the
+/// ctest name): the case name instead of a byte dump of the struct.
+inline void PrintTo(const BadScene& c, std::ostream* os) { *os << c.name; }
+
 class BadSceneTest : public testing::TestWithParam<BadScene> {};
 
 TEST_P(BadSceneTest, NamesFileLineKeyAndWhatWasExpected) {

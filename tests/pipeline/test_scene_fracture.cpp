@@ -24,7 +24,7 @@ namespace {
 
 // h = 0.5 mm, 2 particles per cell per direction: spacing s = 0.25 mm; box 4 mm × 2 mm = 16 × 8
 // particles. Glass: E = 70 GPa, σ_f = 50 MPa, G_f = 0.02 N/mm = 20 J/m², so H̄ = σ_f²/(2 E G_f) =
-// 892.9 1/m and the largest admissible cell is 1/(H̄ √2) = 0.792 mm.
+// 892.9 1/m; l_ch is the particle size s = h/2, so the largest admissible cell is 2/H̄ = 2.24 mm.
 const std::string kScene = R"([grid]
 cell_size = "0.5 mm"
 min = ["0 mm", "0 mm"]
@@ -164,12 +164,13 @@ TEST(SceneFracture, WeibullStrengthsAreSeededPerParticleDraws) {
 }
 
 TEST(SceneFracture, SnapBackNamesTheLargestAdmissibleCellSize) {
-  // G_f = 10 J/m²: h_max = 2 E G_f / (σ_f² √2) = 0.396 mm < h = 0.5 mm.
-  const std::string text = replace(kScene, "\"0.02 N/mm\"", "\"10 J/m2\"");
+  // G_f = 10 J/m²: l_max = 2 E G_f / σ_f² = 0.56 mm, so h_max = 2 l_max = 1.12 mm < h = 1.5 mm.
+  const std::string text =
+      replace(replace(kScene, "\"0.02 N/mm\"", "\"10 J/m2\""), "cell_size = \"0.5 mm\"", "cell_size = \"1.5 mm\"");
   expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy", "cell too coarse for this material (snap-back)");
-  expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy", "the largest admissible cell size is 0.00039598 m");
-  // At h = 0.35 mm the same material is fine.
-  const mpm::Problem<2> p = fp::parse_scene(replace(text, "cell_size = \"0.5 mm\"", "cell_size = \"0.35 mm\""), "fine.toml");
+  expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy", "the largest admissible cell size is 0.00112 m");
+  // At h = 1 mm the same material is fine.
+  const mpm::Problem<2> p = fp::parse_scene(replace(text, "cell_size = \"1.5 mm\"", "cell_size = \"1 mm\""), "fine.toml");
   EXPECT_TRUE(p.materials[0].damages());
 }
 
@@ -426,6 +427,10 @@ struct BadFractureScene {
   std::string explanation;
 };
 
+/// gtest prints each parameter beside the test name (and CMake's test discovery copies that into the
+/// ctest name): the case name instead of a byte dump of the struct.
+inline void PrintTo(const BadFractureScene& c, std::ostream* os) { *os << c.name; }
+
 class BadFractureSceneTest : public testing::TestWithParam<BadFractureScene> {};
 
 TEST_P(BadFractureSceneTest, NamesFileLineKeyAndWhatWasExpected) {
@@ -486,8 +491,8 @@ std::vector<BadFractureScene> bad_scenes() {
        "weibull", "materials[0].weibull.reference_volume", "expected a volume (SI unit m3"},
       {"zero_thickness", replace(kScene, "[[materials]]", "[physics]\nthickness = 0\n\n[[materials]]"), "thickness",
        "physics.thickness", "positive out-of-plane thickness"},
-      {"snap_back", replace(kScene, "\"0.5 mm\"", "\"1 mm\""), "fracture_energy", "materials[0].fracture_energy",
-       "the largest admissible cell size is 0.00079196 m"},
+      {"snap_back", replace(kScene, "\"0.5 mm\"", "\"3 mm\""), "fracture_energy", "materials[0].fracture_energy",
+       "the largest admissible cell size is 0.00224 m"},
       {"unknown_contact_key", with_contact("[contact]\nfrictoin = 1"), "frictoin", "contact.frictoin",
        "unknown key (did you mean 'friction'?)"},
       {"unknown_partitioning", with_contact("[contact]\npartitioning = \"on\""), "partitioning", "contact.partitioning",

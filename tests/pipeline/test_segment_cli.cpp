@@ -24,13 +24,13 @@ struct Outcome {
   std::string output;
 };
 
+// One directory per test: ctest runs the tests of this file in parallel processes, which must not
+// share log or output files.
 fs::path dir() {
-  static const fs::path d = [] {
-    const fs::path p = fs::temp_directory_path() / "fragmpm_test_segment_cli";
-    fs::create_directories(p);
-    return p;
-  }();
-  return d;
+  const fs::path p = fs::temp_directory_path() / "fragmpm_test_segment_cli" /
+                     ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  fs::create_directories(p);
+  return p;
 }
 
 Outcome run(const std::string& arguments) {

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "fragmpm/analysis/fragments.hpp"
 #include "fragmpm/analysis/particle_figure.hpp"
 #include "fragmpm/mpm/particles.hpp"
 
@@ -30,6 +31,10 @@ double max_principal_stress(const Eigen::Matrix2d& sigma);
 /// thermal module).
 ParticleFigure frame_figure(const mpm::Particles<2>& particles, FrameField field,
                             std::optional<double> time, const std::string& title);
+
+/// Ids for a fragment figure: resolved fragments keep their id, fines and masked particles get −1
+/// (drawn grey as "masked or fines").
+std::vector<std::int64_t> resolved_fragment_ids(const FragmentLabels& labels);
 
 /// Figure of fragment ids (one per particle, negative = no fragment / fines) over the frame.
 ParticleFigure fragment_figure(const mpm::Particles<2>& particles, const std::vector<std::int64_t>& fragment_ids,

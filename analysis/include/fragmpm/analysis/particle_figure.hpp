@@ -21,6 +21,7 @@ struct ParticleFigure {
   /// ... or categorical ids (one per particle; negative = none, drawn grey). Exactly one is given.
   std::vector<std::int64_t> ids;
   std::string id_name = "id";   ///< legend prefix for ids ("body", "fragment")
+  std::string none_name = "none";  ///< legend entry of the negative ids (grey)
   std::string title;
   std::string field_name;       ///< colour-bar label, e.g. "damage"
   std::string units;            ///< e.g. "K", "MPa", "m/s"; empty or "1" for dimensionless

@@ -46,14 +46,18 @@ struct WeibullStrength {
 // Damage mechanics (implemented in damage_law.cpp; D = 2 plane strain and D = 3 instantiated).
 
 /// Mesh-regularised damage modulus H_s = H̄ l_ch / (1 − H̄ l_ch) with the brittleness
-/// H̄ = σ_f² / (2 E G_f) (000 eq. 20-21). `strength` σ_f [Pa], `characteristic_length` l_ch [m]
-/// (the cell diagonal). Returns NaN when H̄ l_ch ≥ 1: the element would have to snap back to
-/// dissipate G_f, so no mesh-regularised softening exists at this cell size.
+/// H̄ = σ_f² / (2 E G_f) (000 eq. 20-21). `strength` σ_f [Pa], `characteristic_length` l_ch [m]:
+/// the width of the band the damage localises in. The solver passes the particle size V₀^(1/D),
+/// not the paper's cell diagonal: damage is a particle variable, so a crack localises in one row
+/// of particles, and only l_ch = that row's width makes the band dissipate G_f per unit crack area
+/// (with the cell diagonal and 2 particles per cell a one-row crack dissipates G_f/(2√2)).
+/// Returns NaN when H̄ l_ch ≥ 1: the particle would have to snap back to dissipate G_f, so no
+/// regularised softening exists at this particle size.
 double rankine_softening_modulus(double strength, const RankineSoftening& law, double characteristic_length);
 
-/// Largest cell size h [m] for which H̄ l_ch < 1 with l_ch = h √D: every h strictly below it is
-/// admissible (000 eq. 21). `dimension` D = 2 or 3.
-double rankine_largest_cell_size(double strength, const RankineSoftening& law, int dimension);
+/// Largest characteristic length l_ch [m] with H̄ l_ch < 1 (000 eq. 21): every l_ch strictly below
+/// 1/H̄ = 2 E G_f / σ_f² is admissible.
+double rankine_largest_characteristic_length(double strength, const RankineSoftening& law);
 
 /// One damage update from the trial (undamaged, "effective") Cauchy stress σ̄ [Pa] of a particle
 /// with strength σ_f [Pa] and characteristic length l_ch [m], over a step dt [s]. `history` keeps

@@ -1,4 +1,6 @@
 #pragma once
+#include <cmath>
+#include <limits>
 // `fragmpm verify`: verification cases at successive resolutions against closed-form or published
 // answers (DESIGN §7), and the stability scenes (`--stability`).
 #include <functional>
@@ -23,6 +25,12 @@ struct VerifyRow {
   double value = 0.0;
   double reference = 0.0;
   double error = 0.0;
+  /// Acceptance band of `value` from BENCHMARKS.md / the issue ("done when"); a row without a
+  /// target has the whole line. report_case says PASS or FAIL for rows with a target.
+  double target_low = -std::numeric_limits<double>::infinity();
+  double target_high = std::numeric_limits<double>::infinity();
+  bool has_target() const { return std::isfinite(target_low) || std::isfinite(target_high); }
+  bool passed() const { return value >= target_low && value <= target_high; }
 };
 
 struct VerifyOptions {
@@ -64,8 +72,9 @@ std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options);
 /// variant and metric; NaN where undefined.
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
 
-/// Writes DIR/CASE.csv (creating DIR) and prints the table with orders to stdout.
-void report_case(const std::string& directory, const std::string& case_name,
+/// Writes DIR/CASE.csv (creating DIR) and prints the table with orders and PASS/FAIL against each
+/// row's target to stdout. Returns false when a row with a target missed it.
+bool report_case(const std::string& directory, const std::string& case_name,
                  const std::vector<VerifyRow>& rows);
 
 struct StabilityResult {
