@@ -166,7 +166,8 @@ struct Solver<D>::Impl {
   std::vector<Mat<D>> node_gradient_tensor;           ///< Σ_p ∇D̄_p ⊗ ∇D̄_p (principal rule only)
   std::array<std::vector<Vec<D>>, 2> node_mass_gradient;  ///< Σ m_p ∇S̄_ip per field (000 eq. 74)
   std::array<std::vector<double>, 2> node_dhat;           ///< Σ S̄ m_p d̂_p per field (000 eq. 70)
-  std::array<std::vector<double>, 2> node_volume;         ///< Σ S̄ V_p per field (004 eq. 11)
+  std::array<std::vector<Vec<D>>, 2> node_volume_gradient;  ///< Σ V_p ∇S̄_ip per field (contact area)
+  bool needs_contact_area = false;  ///< the contact friction law has a strength term (004 eq. 24)
   std::array<std::vector<Vec<D>>, 2> node_position;       ///< Σ S̄ m_p x_p per field (004 eq. 8)
   std::vector<double> node_dhat_max;                      ///< largest d̂ mapping to the node
   std::vector<std::int64_t> two_field_nodes;
@@ -184,6 +185,7 @@ struct Solver<D>::Impl {
     }
     partitioned = partitioning_active(problem);
     by_bodies = problem.contact.partitioning == Partitioning::bodies;
+    needs_contact_area = std::holds_alternative<AdhesiveFriction>(problem.contact.friction);
     kernel_radius = problem.grid.cell_size * std::sqrt(double(D));
     grid.origin = problem.grid.min;
     grid.cell_size = problem.grid.cell_size;
@@ -324,8 +326,8 @@ struct Solver<D>::Impl {
       for (int f = 0; f < 2; ++f) {
         node_mass_gradient[f].assign(nodes, Vec<D>::Zero());
         node_dhat[f].assign(nodes, 0.0);
-        node_volume[f].assign(nodes, 0.0);
         if (problem.contact.position_gap_test) node_position[f].assign(nodes, Vec<D>::Zero());
+        if (needs_contact_area) node_volume_gradient[f].assign(nodes, Vec<D>::Zero());
       }
     }
     thread_slots = omp_get_max_threads();
@@ -449,6 +451,7 @@ struct Solver<D>::Impl {
     const Vec<D> gravity = problem.gravity;
     const bool loaded = !load_force.empty();
     const bool gap_test = problem.contact.position_gap_test;
+    const bool area_needed = needs_contact_area;
     for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
       const double volume = P.volume0[p] * P.F[p].determinant();
       const Mat<D> volume_stress = volume * P.stress[p];
@@ -465,9 +468,9 @@ struct Solver<D>::Impl {
           node_mass_gradient[f][i] += P.mass[p] * s.gradient[e];
           const double dhat = by_bodies ? 0.0 : particle_dhat[p];
           node_dhat[f][i] += s.weight[e] * P.mass[p] * dhat;
-          node_volume[f][i] += s.weight[e] * volume;
           if (s.weight[e] > 0.0) node_dhat_max[i] = std::max(node_dhat_max[i], dhat);
           if (gap_test) node_position[f][i] += s.weight[e] * P.mass[p] * P.x[p];
+          if (area_needed) node_volume_gradient[f][i] += volume * s.gradient[e];
         }
       }
     });
@@ -544,8 +547,12 @@ struct Solver<D>::Impl {
       pair.velocity_a = node_velocity[0][i];
       pair.velocity_b = node_velocity[1][i];
       pair.normal = normal / normal_length;
-      pair.area = contact_area_2d(node_volume[0][i] + node_volume[1][i], node_volume[0][i],
-                                  node_volume[1][i], grid.cell_size, 1.0);
+      // Tributary interface area from the fields' volume gradients (divergence theorem; exact also
+      // where an interface ends inside the node's support, where 004 eq. 11 over-estimates: at the
+      // edge of the sliding block it gives 0.61 h instead of h/2, 5 % too much adhesion at 5 mm).
+      pair.area = needs_contact_area ? contact_area_from_gradients<D>(node_volume_gradient[0][i],
+                                                                       node_volume_gradient[1][i], pair.normal)
+                                     : 0.0;
       if (contact.position_gap_test) {
         // 004 eq. (8) with the normal pointing from a to b: the surfaces overlap when the field
         // centres are closer along n than 0.8 h (the printed (x_a − x_b)·n has the opposite sign
@@ -693,9 +700,10 @@ struct Solver<D>::Impl {
           const double damage_before = P.damage[p];
           // l_ch = particle size: the width of the one-particle band a crack localises in
           // (see rankine_softening_modulus for why not the paper's cell diagonal).
-          const double particle_size =
-              D == 2 ? std::sqrt(P.volume0[p]) : std::cbrt(P.volume0[p]);
-          update_damage<D>(spec.damage, trial, P.strength[p], particle_size, dt,
+          const double band_width =
+              spec.characteristic_length > 0.0 ? spec.characteristic_length
+                                               : (D == 2 ? std::sqrt(P.volume0[p]) : std::cbrt(P.volume0[p]));
+          update_damage<D>(spec.damage, trial, P.strength[p], band_width, dt,
                            P.damage_history[p], P.damage[p]);
           const double psi = model.energy_density<D>(P.F[p]);
           if (P.damage[p] > 0.0) {

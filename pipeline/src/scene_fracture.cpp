@@ -65,13 +65,19 @@ std::string plain(double v) {
 /// size (the solver's characteristic length; see rankine_softening_modulus).
 void check_softening(const Section& m, const mpm::MaterialSpec& spec, const mpm::RankineSoftening& law,
                      double strength, const std::string& which_strength, const mpm::GridSpec<2>& grid,
-                     double particle_spacing) {
-  const double l_ch = particle_spacing;
+                     double particle_spacing, double l_ch) {
   if (std::isfinite(mpm::rankine_softening_modulus(strength, law, l_ch))) return;
   const double hbar_l = strength * strength * l_ch / (2.0 * law.youngs_modulus * law.fracture_energy);
-  // Particles per cell stay fixed, so the cell size scales with the particle size.
+  // Particles per cell stay fixed, so the cell size scales with the particle size (and with l_ch when
+  // l_ch is the particle size; a given l_ch has to be reduced itself).
   const double h_max =
       mpm::rankine_largest_characteristic_length(strength, law) * grid.cell_size / particle_spacing;
+  if (l_ch != particle_spacing)
+    m.fail("characteristic_length",
+           "expected a characteristic length below " + si(mpm::rankine_largest_characteristic_length(strength, law), "m") +
+               " for material '" + spec.name + "' (snap-back: H̄ l_ch = " +
+               plain(strength * strength * l_ch / (2.0 * law.youngs_modulus * law.fracture_energy)) +
+               " >= 1, 000 eq. 20-21), got " + si(l_ch, "m"));
   const double gf_min = strength * strength * l_ch / (2.0 * law.youngs_modulus);
   m.fail("fracture_energy",
          "expected a cell fine enough for the softening of material '" + spec.name +
@@ -88,7 +94,8 @@ void check_softening(const Section& m, const mpm::MaterialSpec& spec, const mpm:
 
 const std::vector<std::string_view>& damage_keys() {
   static const std::vector<std::string_view> keys = {"damage",      "strength",    "fracture_energy",
-                                                     "crack_speed", "degradation", "weibull"};
+                                                     "crack_speed", "degradation", "weibull",
+                                                     "characteristic_length"};
   return keys;
 }
 
@@ -122,6 +129,13 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     spec.strength = spec.weibull_strength.reference_strength;
   }
 
+  if (m.has("characteristic_length")) {
+    spec.characteristic_length = m.quantity("characteristic_length", QK::length);
+    if (!(spec.characteristic_length > 0.0))
+      m.expected("characteristic_length", "a positive length l_ch (default: the particle size)");
+  }
+  const double band_width = spec.characteristic_length > 0.0 ? spec.characteristic_length : particle_spacing;
+
   const std::string degradation = m.optional_string("degradation").value_or("tensile");
   if (degradation == "tensile") spec.degradation = mpm::Degradation::tensile_spectral;
   else if (degradation == "isotropic") spec.degradation = mpm::Degradation::isotropic;
@@ -140,9 +154,9 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     if (spec.weibull)
       check_softening(m, spec, r,
                       mpm::weibull_median_strength(particle_spacing * particle_spacing, spec.weibull_strength, 2),
-                      "the Weibull median at the particle volume", grid, particle_spacing);
+                      "the Weibull median at the particle volume", grid, particle_spacing, band_width);
     else
-      check_softening(m, spec, r, spec.strength, "strength", grid, particle_spacing);
+      check_softening(m, spec, r, spec.strength, "strength", grid, particle_spacing, band_width);
   } else {
     if (m.has("fracture_energy"))
       m.fail("fracture_energy", "expected fracture_energy only with damage = \"rankine\", got it with \"time-to-failure\"");

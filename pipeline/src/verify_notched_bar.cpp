@@ -46,7 +46,7 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
   const double spacing = std::sqrt(problem.particles.volume0[0]);
   mpm::Solver<2> solver(std::move(problem));
   const double end_time = solver.problem().stop.end_time;
-  const TimedRun timing = run_until(solver, end_time, "notched-bar " + partitioning + " h = " + toml_number(cell_size) + " m", 0.0, [](const mpm::Solver<2>&) {});
+  const TimedRun timing = run_until(solver, end_time, "notched-bar " + partitioning + " " + cell_label(cell_size), 0.0, [](const mpm::Solver<2>&) {});
   const auto& row = solver.last_row();
   const double crack = formed_crack_length(solver.particles(), spacing);
   const std::string variant = partitioning == "auto" ? "partitioned" : "single-field";

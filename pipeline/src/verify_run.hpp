@@ -11,6 +11,13 @@
 
 namespace fragmpm::pipeline {
 
+/// "h = 5 mm"-style label of a level for progress lines.
+inline std::string cell_label(double cell_size) {
+  char text[32];
+  std::snprintf(text, sizeof text, "h = %.4g mm", cell_size * 1e3);
+  return text;
+}
+
 /// One progress line per finished run on stderr (verification runs take minutes each).
 inline void announce_run(const std::string& what, std::size_t particles, long long steps, double time,
                          double wall_seconds) {

@@ -126,8 +126,8 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
     largest_dt = std::max(largest_dt, solver.last_row().dt);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  announce_run("sliding-block " + variant.name + (computed_normal ? "-computed-normal" : "") + " h = " +
-                   toml_number(cell_size) + " m",
+  announce_run("sliding-block " + variant.name + (computed_normal ? "-computed-normal" : "") + " " +
+                   cell_label(cell_size),
                solver.particles().size(), solver.step_count(), solver.time(), wall);
   const mpm::Particles<2>& P = solver.particles();
   double mass = 0.0, momentum = 0.0;

@@ -459,6 +459,13 @@ std::vector<BadFractureScene> bad_scenes() {
        "materials[0].fracture_energy", "expected an energy per area"},
       {"zero_fracture_energy", replace(kScene, "\"0.02 N/mm\"", "0"), "fracture_energy", "materials[0].fracture_energy",
        "positive fracture energy"},
+      {"negative_characteristic_length",
+       replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ncharacteristic_length = \"-1 mm\""),
+       "characteristic_length", "materials[0].characteristic_length", "a positive length l_ch"},
+      // l_max = 2 E G_f / σ_f² = 1.12 mm for the glass: a given l_ch of 2 mm snaps back.
+      {"characteristic_length_snap_back",
+       replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ncharacteristic_length = \"2 mm\""),
+       "characteristic_length", "materials[0].characteristic_length", "expected a characteristic length below 0.00112 m"},
       {"crack_speed_with_rankine", replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ncrack_speed = 100"),
        "crack_speed", "materials[0].crack_speed", "only with damage = \"time-to-failure\""},
       {"fracture_energy_with_ttf", replace(kScene, "damage = \"rankine\"", "damage = \"time-to-failure\"\ncrack_speed = 100"),

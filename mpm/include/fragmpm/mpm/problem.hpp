@@ -27,6 +27,9 @@ struct MaterialSpec {
   double strength = 0.0;       ///< uniform σ_f [Pa] (Particles::strength holds the per-particle value)
   bool weibull = false;        ///< strengths drawn from `weibull_strength` (001 eq. 25)
   WeibullStrength weibull_strength;
+  /// l_ch of the damage law [m]; 0 = the particle size V₀^(1/D) (the width of a one-particle crack
+  /// band). The papers list l_ch as an input (001 Tables II-III: 1.414 mm at h = 1 mm).
+  double characteristic_length = 0.0;
 
   bool damages() const { return !std::holds_alternative<NoDamage>(damage); }
 };
