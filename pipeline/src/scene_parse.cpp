@@ -15,6 +15,7 @@
 #include "fragmpm/pipeline/scene_shapes.hpp"
 #include "scene_fracture.hpp"
 #include "scene_grains.hpp"
+#include "scene_thermal.hpp"
 #include "scene_toml.hpp"
 #include "scene_validate.hpp"
 
@@ -97,6 +98,7 @@ mpm::MaterialSpec read_material(const Section& m, std::optional<double> thicknes
                                 double particle_spacing) {
   std::vector<std::string_view> keys = {"name", "model", "E", "nu", "K", "G", "density"};
   keys.insert(keys.end(), damage_keys().begin(), damage_keys().end());
+  keys.insert(keys.end(), thermal_material_keys().begin(), thermal_material_keys().end());
   m.allow_only(keys);
   mpm::MaterialSpec spec;
   spec.name = m.name("name");
@@ -129,7 +131,8 @@ mpm::MaterialSpec read_material(const Section& m, std::optional<double> thicknes
 Shape read_shape(const Section& b) {
   Shape s;
   const std::string kind = b.string("shape");
-  const std::vector<std::string_view> common = {"name", "material", "shape", "velocity", "angular_velocity"};
+  const std::vector<std::string_view> common = {"name", "material", "shape", "velocity", "angular_velocity",
+                                                 "temperature"};
   auto allow = [&](std::initializer_list<std::string_view> extra) {
     std::vector<std::string_view> keys = common;
     keys.insert(keys.end(), extra);
@@ -217,7 +220,7 @@ mpm::VelocityHistory<2> read_history(const Section& h) {
 }
 
 mpm::WallSpec<2> read_wall(const Section& w) {
-  w.allow_only({"name", "point", "normal", "kind", "friction", "velocity"});
+  w.allow_only({"name", "point", "normal", "kind", "friction", "velocity", "thermal"});
   mpm::WallSpec<2> wall;
   wall.name = w.name("name");
   wall.point = w.vector("point", QK::length);
@@ -402,9 +405,11 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   }
 
   NameRegistry wall_names("wall");
+  std::vector<mpm::ThermalWallCondition> wall_thermal;
   for (const Section& w : top.array_of_tables("walls", false)) {
     problem.walls.push_back(read_wall(w));
     wall_names.add(w, problem.walls.back().name);
+    if (auto c = read_wall_thermal(w, problem.walls.size() - 1)) wall_thermal.push_back(*c);
   }
   if (auto contact = top.optional_table("contact")) problem.contact = read_contact(*contact);
 
@@ -424,6 +429,16 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   for (std::size_t g = 0; g < grain_entries.size(); ++g)
     append_particles(problem.particles, grain_entries[g].bodies.particles, grain_first_id[g]);
   assign_strengths(problem, material_sections);
+  {
+    std::vector<std::optional<double>> body_temperature(problem.body_names.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      body_temperature[static_cast<std::size_t>(shape_body_id[i])] = read_body_temperature(bodies[i].section);
+    for (std::size_t g = 0; g < grain_entries.size(); ++g)
+      for (std::size_t k = 0; k < grain_entries[g].body_names.size(); ++k)
+        body_temperature[static_cast<std::size_t>(grain_first_id[g]) + k] =
+            read_body_temperature(grain_entries[g].section);
+    compile_thermal(problem, material_sections, body_temperature, wall_thermal);
+  }
 
   // Loads name a body, or an image/grain entry for all of its grains.
   std::map<std::string, std::vector<std::int32_t>> load_bodies;

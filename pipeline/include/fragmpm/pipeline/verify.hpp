@@ -60,6 +60,9 @@ std::vector<VerifyRow> verify_notched_bar(const VerifyOptions& options);
 /// P1: Kalthoff–Winkler crack angle and speed (000 §4.3; 001 §3.2).
 std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options);
 
+/// V4: one-dimensional conduction from a temperature step against the erfc solution.
+std::vector<VerifyRow> verify_conduction(const VerifyOptions& options);
+
 /// Observed order of convergence log(e_a/e_b)/log(h_a/h_b) between consecutive levels of one
 /// variant and metric; NaN where undefined.
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
