@@ -176,6 +176,7 @@ struct Solver<D>::Impl {
   std::vector<double> node_dhat_max;                      ///< largest d̂ mapping to the node
   std::vector<std::int64_t> two_field_nodes;
   std::vector<double> node_friction_work;
+  std::vector<double> node_normal_impulse, node_contact_area;  ///< per two-field node, for contact heat
   long long contact_nodes_last_step = 0;
 
   // ---- traction loads
@@ -504,6 +505,10 @@ struct Solver<D>::Impl {
       if (node_mass[1][i] > negligible_mass) two_field_nodes.push_back(i);
     const std::int64_t count = static_cast<std::int64_t>(two_field_nodes.size());
     node_friction_work.assign(two_field_nodes.size(), 0.0);
+    if (thermal) {
+      node_normal_impulse.assign(two_field_nodes.size(), 0.0);
+      node_contact_area.assign(two_field_nodes.size(), 0.0);
+    }
     const ContactSpec<D>& contact = problem.contact;
     const bool prescribed_normal = contact.normal.squaredNorm() > 0.0;
     const Vec<D> fixed_normal =
@@ -552,10 +557,15 @@ struct Solver<D>::Impl {
         const Vec<D> centre0 = node_position[0][i] / m0, centre1 = node_position[1][i] / m1;
         pair.gap_closed = (centre1 - centre0).dot(pair.normal) - 0.8 * grid.cell_size < 0.0;
       }
+      if (thermal) pair.temperature = thermal->interface_temperature(i);  // 000 eq. 15, Alg. 3 line 12
       const ContactExchange<D> exchange =
           exchange_momentum<D>(pair, contact.friction, dt, FrictionWorkOrder::first);
       if (!exchange.in_contact) continue;
       ++in_contact;
+      if (thermal) {
+        node_normal_impulse[k] = exchange.normal_impulse;
+        node_contact_area[k] = pair.area;
+      }
       node_velocity[0][i] += exchange.momentum_change_a / m0;
       node_velocity[1][i] -= exchange.momentum_change_a / m1;
       node_friction_work[k] = exchange.friction_work;
@@ -769,16 +779,18 @@ struct Solver<D>::Impl {
     if (partition_this_step) {
       if (!by_bodies) nodal_damage_gradient<Kind>();
       particles_to_grid<Kind, true>();
-      if constexpr (Thermal) thermal->template step<Kind, true>(*this, dt);  // 000 Alg. 1 line 5
+      if constexpr (Thermal) thermal->template begin<Kind, true>(*this);  // nodal θⁿ for friction
       update_grid_velocities(dt);
       resolve_two_field_nodes(dt);
       if (!problem.walls.empty()) apply_walls(dt);
+      if constexpr (Thermal) thermal->template finish<Kind, true>(*this, dt);  // 000 Alg. 1 line 5
       return grid_to_particles<Kind, true, Thermal>(dt);
     }
     particles_to_grid<Kind, false>();
-    if constexpr (Thermal) thermal->template step<Kind, false>(*this, dt);
+    if constexpr (Thermal) thermal->template begin<Kind, false>(*this);
     update_grid_velocities(dt);
     if (!problem.walls.empty()) apply_walls(dt);
+    if constexpr (Thermal) thermal->template finish<Kind, false>(*this, dt);
     return grid_to_particles<Kind, false, Thermal>(dt);
   }
 

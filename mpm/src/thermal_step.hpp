@@ -78,12 +78,16 @@ class ThermalModule {
   /// Nodal temperature of field f at active node i after the re-projection of this step [K].
   double node_temperature(int f, std::size_t i) const { return temperature_[static_cast<std::size_t>(f)][i]; }
 
-  /// One thermal stage (000 Alg. 2). `Host` is the solver's Impl: it supplies the race-free scatter,
-  /// the particle-to-field map, separability and the active grid.
+  /// Interface temperature max(θ₀ᵢ, θ₁ᵢ) of a two-field node for the friction law (000 eq. 15) [K].
+  double interface_temperature(std::size_t i) const { return std::max(temperature_[0][i], temperature_[1][i]); }
+
+  /// First half of the thermal stage, after the mechanical P2G: nodal capacities and the
+  /// re-projected nodal temperatures θⁿ (000 eq. 56; Alg. 2 lines 4, 19-21), which the contact
+  /// friction law of this step reads. `Host` is the solver's Impl: it supplies the race-free
+  /// scatter, the particle-to-field map, separability and the active grid.
   template <ShapeFunctionKind Kind, bool Partitioned, class Host>
-  void step(Host& host, double dt) {
+  void begin(Host& host) {
     auto& P = host.problem.particles;
-    const ThermalSpec<D>& spec = host.problem.thermal;
     const std::size_t nodes = host.node_mass[0].size();
     constexpr int fields = Partitioned ? 2 : 1;
     for (int f = 0; f < fields; ++f) {
@@ -126,6 +130,20 @@ class ThermalModule {
         }
       }
     }
+  }
+
+  /// Second half, after the contact and wall exchanges of this step: heat loads, nodal rates and the
+  /// particle temperatures θⁿ⁺¹ (000 Alg. 2), before the stress update that uses them.
+  template <ShapeFunctionKind Kind, bool Partitioned, class Host>
+  void finish(Host& host, double dt) {
+    auto& P = host.problem.particles;
+    const ThermalSpec<D>& spec = host.problem.thermal;
+    const std::int64_t count = static_cast<std::int64_t>(capacity_[0].size());
+    constexpr int fields = Partitioned ? 2 : 1;
+    auto field = [&](std::int64_t p, std::size_t i) -> int {
+      if constexpr (Partitioned) return host.field_of(p, i);
+      else return 0;
+    };
 
     // 2. Conduction Q_i^int = Σ_p V_p q_p·∇S̄_ip with q_p = −κ_p ∇θ(x_p) (000 eq. 18, 58), and heat
     //    input through body edges carried by particles, Q_i += S̄_ip a_p q̄ (eq. 57).
@@ -146,8 +164,9 @@ class ThermalModule {
       }
     });
 
-    // 3. Thermal conditions on walls (000 eq. 44, 57).
+    // 3. Thermal conditions on walls (000 eq. 44, 57); heat across and from separable contacts.
     if (!spec.walls.empty()) apply_wall_loads(host, fields);
+    if constexpr (Partitioned) add_contact_heat(host, dt);
 
     // 4. Nodal rates (eq. 55); two fields that are not separable share one rate (Alg. 2 line 10).
 #pragma omp parallel for schedule(static)
@@ -259,6 +278,45 @@ class ThermalModule {
           load_[f][i] += measure * q;
         }
       }
+    }
+  }
+
+  /// Heat exchanged at separable two-field nodes in contact this step (000 eq. 11-14, 79-82):
+  /// conductance h_c = h₀ |p/p₀|^ε with the contact pressure p = f_n / A_c from this step's normal
+  /// contact impulse (f_n = N A_c = impulse/Δt) and area A_c (004 eq. 11), so the nodal load is
+  /// Q₀ = h_c A_c (θ₁ − θ₀) = −Q₁; for ε = 1 this is γ̄ |f_n| [θ] of eq. (82) and needs no area.
+  /// The explicit exchange is capped at what equalises the two nodal temperatures in one step
+  /// (C₀C₁/(C₀+C₁) |θ₁ − θ₀| / Δt): a perfectly conducting contact is then one body, never an
+  /// overshoot. The friction work W of the step is heat W/Δt, half into each side (eq. 14, 82).
+  template <class Host>
+  void add_contact_heat(Host& host, double dt) {
+    const ThermalSpec<D>& spec = host.problem.thermal;
+    const bool conducts = spec.contact_conductance > 0.0;
+    const std::size_t count = host.two_field_nodes.size();
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = static_cast<std::size_t>(host.two_field_nodes[k]);
+      const double c0 = capacity_[0][i], c1 = capacity_[1][i];
+      if (!(c0 > negligible_capacity_ && c1 > negligible_capacity_) || !host.node_separable(i)) continue;
+      const double friction_heat = host.node_friction_work[k] / dt;
+      load_[0][i] += 0.5 * friction_heat;
+      load_[1][i] += 0.5 * friction_heat;
+      const double impulse = host.node_normal_impulse[k];
+      if (!conducts || !(impulse > 0.0)) continue;
+      const double force = impulse / dt;
+      double conductance_area = 0.0;  // h_c A_c [W/K per unit thickness]
+      if (spec.contact_exponent == 1.0) {
+        conductance_area = spec.contact_conductance / spec.contact_pressure * force;
+      } else {
+        const double area = host.node_contact_area[k];
+        if (!(area > 0.0)) continue;
+        conductance_area =
+            spec.contact_conductance * std::pow(force / (area * spec.contact_pressure), spec.contact_exponent) * area;
+      }
+      const double jump = temperature_[1][i] - temperature_[0][i];
+      const double equalising = c0 * c1 / (c0 + c1) / dt;
+      const double flow = std::min(conductance_area, equalising) * jump;  // into field 0 [W]
+      load_[0][i] += flow;
+      load_[1][i] -= flow;
     }
   }
 

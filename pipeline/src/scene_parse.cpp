@@ -411,7 +411,10 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
     wall_names.add(w, problem.walls.back().name);
     if (auto c = read_wall_thermal(w, problem.walls.size() - 1)) wall_thermal.push_back(*c);
   }
-  if (auto contact = top.optional_table("contact")) problem.contact = read_contact(*contact);
+  if (auto contact = top.optional_table("contact")) {
+    problem.contact = read_contact(*contact);
+    read_contact_conductance(*contact, problem.thermal);
+  }
 
   if (!top.has("stop"))
     top.fail("stop", "missing required table [stop]: expected at least one of end_time, max_steps, platen_displacement");
@@ -429,16 +432,6 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   for (std::size_t g = 0; g < grain_entries.size(); ++g)
     append_particles(problem.particles, grain_entries[g].bodies.particles, grain_first_id[g]);
   assign_strengths(problem, material_sections);
-  {
-    std::vector<std::optional<double>> body_temperature(problem.body_names.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      body_temperature[static_cast<std::size_t>(shape_body_id[i])] = read_body_temperature(bodies[i].section);
-    for (std::size_t g = 0; g < grain_entries.size(); ++g)
-      for (std::size_t k = 0; k < grain_entries[g].body_names.size(); ++k)
-        body_temperature[static_cast<std::size_t>(grain_first_id[g]) + k] =
-            read_body_temperature(grain_entries[g].section);
-    compile_thermal(problem, material_sections, body_temperature, wall_thermal);
-  }
 
   // Loads name a body, or an image/grain entry for all of its grains.
   std::map<std::string, std::vector<std::int32_t>> load_bodies;
@@ -449,7 +442,20 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
       load_bodies[grain_entries[g].name].push_back(grain_first_id[g] + static_cast<std::int32_t>(k));
   const std::vector<Section> load_sections = top.array_of_tables("loads", false);
   for (std::size_t i = 0; i < load_sections.size(); ++i)
-    problem.loads.push_back(read_load(load_sections[i], i, problem, load_bodies));
+    if (is_heat_load(load_sections[i]))
+      problem.thermal.edge_loads.push_back(read_heat_load(load_sections[i], i, problem, load_bodies));
+    else
+      problem.loads.push_back(read_load(load_sections[i], i, problem, load_bodies));
+  {
+    std::vector<std::optional<double>> body_temperature(problem.body_names.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      body_temperature[static_cast<std::size_t>(shape_body_id[i])] = read_body_temperature(bodies[i].section);
+    for (std::size_t g = 0; g < grain_entries.size(); ++g)
+      for (std::size_t k = 0; k < grain_entries[g].body_names.size(); ++k)
+        body_temperature[static_cast<std::size_t>(grain_first_id[g]) + k] =
+            read_body_temperature(grain_entries[g].section);
+    compile_thermal(problem, material_sections, body_temperature, wall_thermal);
+  }
 
   if (time) check_fixed_dt(problem, *time);
   return problem;

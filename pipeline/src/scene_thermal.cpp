@@ -58,6 +58,20 @@ std::optional<mpm::ThermalWallCondition> read_wall_thermal(const Section& w, std
   return c;
 }
 
+void read_contact_conductance(const Section& c, mpm::ThermalSpec<2>& thermal) {
+  if (!c.has("conductance")) {
+    for (std::string_view k : {"conductance_pressure", "conductance_exponent"})
+      if (c.has(k)) c.fail(k, "expected " + std::string(k) + " only together with conductance");
+    return;
+  }
+  thermal.contact_conductance = c.quantity("conductance", QK::film_coefficient);
+  if (!(thermal.contact_conductance >= 0.0)) c.expected("conductance", "a contact conductance h0 >= 0");
+  thermal.contact_pressure = c.optional_quantity("conductance_pressure", QK::pressure).value_or(1.0);
+  if (!(thermal.contact_pressure > 0.0)) c.expected("conductance_pressure", "a positive reference pressure p0");
+  thermal.contact_exponent = c.optional_number("conductance_exponent").value_or(1.0);
+  if (!(thermal.contact_exponent > 0.0)) c.expected("conductance_exponent", "a positive exponent epsilon");
+}
+
 void compile_thermal(mpm::Problem<2>& problem, const std::vector<Section>& material_sections,
                      const std::vector<std::optional<double>>& body_temperature,
                      const std::vector<mpm::ThermalWallCondition>& wall_conditions) {
@@ -70,6 +84,8 @@ void compile_thermal(mpm::Problem<2>& problem, const std::vector<Section>& mater
       }
   for (std::size_t b = 0; b < body_temperature.size() && reason.empty(); ++b)
     if (body_temperature[b]) reason = "body '" + problem.body_names[b] + "' sets a temperature";
+  if (reason.empty() && !problem.thermal.edge_loads.empty())
+    reason = "load '" + problem.thermal.edge_loads.front().name + "' puts heat into a body";
   if (reason.empty() && !wall_conditions.empty())
     reason = "wall '" + problem.walls[wall_conditions.front().wall].name + "' has a thermal condition";
   if (reason.empty()) return;  // module off: no thermal arrays (DESIGN §4)

@@ -20,10 +20,14 @@ std::optional<double> read_body_temperature(const Section& body);
 /// The `thermal = { … }` table of a [[walls]] entry, for wall index `wall`.
 std::optional<mpm::ThermalWallCondition> read_wall_thermal(const Section& wall_section, std::size_t wall);
 
+/// `conductance`, `conductance_pressure`, `conductance_exponent` of [contact] (000 eq. 12-13).
+void read_contact_conductance(const Section& contact, mpm::ThermalSpec<2>& thermal);
+
 /// Decides whether the thermal module runs and, if so, fills problem.thermal.materials (reason
 /// included) and the particles' initial temperatures: body temperature, else the material's
 /// `temperature`, else 20 °C. The module runs when any material has a thermal key, any body a
-/// temperature, or any wall a thermal condition; then every material needs `heat_capacity`.
+/// temperature, any wall a thermal condition, or a [[loads]] entry puts heat in (already in
+/// problem.thermal.edge_loads); then every material needs `heat_capacity`.
 /// `body_temperature[b]` is per body id; `wall_conditions` were read by read_wall_thermal.
 void compile_thermal(mpm::Problem<2>& problem, const std::vector<Section>& material_sections,
                      const std::vector<std::optional<double>>& body_temperature,

@@ -53,6 +53,11 @@ struct ThermalSpec {
   std::vector<ThermalMaterial> materials;  ///< one per problem material; empty = module off
   std::vector<ThermalWallCondition> walls;
   std::vector<HeatFluxLoad> edge_loads;
+  /// Contact conductance h_c = h₀ |p/p₀|^ε at separable nodes in contact (000 eq. 12; ε = 1 is
+  /// eq. 13 with γ̄ = h₀/p₀). h₀ = 0: contacts pass no heat by conduction (friction heat still flows).
+  double contact_conductance = 0.0;  ///< h₀ [W/(m² K)]
+  double contact_pressure = 1.0;     ///< p₀ [Pa]
+  double contact_exponent = 1.0;     ///< ε
   /// Why the scene needs the module (logged in /meta), e.g. "material 'rock' has thermal data".
   std::string reason;
 
