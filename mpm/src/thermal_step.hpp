@@ -60,7 +60,7 @@ class ThermalModule {
     for (std::size_t p = 0; p < n; ++p)
       lightest = std::min(lightest, P.mass[p] * specific_heat_[static_cast<std::size_t>(P.material[p])]);
     negligible_capacity_ = std::isfinite(lightest) ? 1e-10 * lightest : 0.0;
-    for (const ThermalWallCondition& c : problem.thermal.walls)
+    for (const ThermalWallCondition<D>& c : problem.thermal.walls)
       if (c.kind == ThermalWallKind::flux || c.kind == ThermalWallKind::convection) boundary_measure_ = true;
     if (!problem.thermal.edge_loads.empty()) edge_source_.assign(n, 0.0);
     dt_limit_ = thermal_stable_time_step<D>(problem, P, problem.time.cfl);
@@ -259,9 +259,9 @@ class ThermalModule {
     const std::int64_t nodes = static_cast<std::int64_t>(capacity_[0].size());
     const double h = host.grid.cell_size;
     const double tolerance = 1e-9 * h;
-    for (const ThermalWallCondition& c : host.problem.thermal.walls) {
+    for (const ThermalWallCondition<D>& c : host.problem.thermal.walls) {
       if (c.kind == ThermalWallKind::insulated) continue;
-      const WallSpec<D>& wall = host.problem.walls[c.wall];
+      const ThermalWallCondition<D>& wall = c;
       const Vec<D> point = wall.point + wall.velocity.displacement(host.time);
       for (std::int64_t i = 0; i < nodes; ++i) {
         const double distance = (host.grid.position(host.grid.global(i)) - point).dot(wall.normal);

@@ -231,7 +231,8 @@ mpm::WallSpec<2> read_wall(const Section& w) {
   if (kind == "contact") wall.kind = mpm::WallKind::contact;
   else if (kind == "roller") wall.kind = mpm::WallKind::roller;
   else if (kind == "fixed") wall.kind = mpm::WallKind::fixed;
-  else w.expected("kind", "one of \"contact\", \"roller\", \"fixed\"");
+  else if (kind == "thermal") wall.kind = mpm::WallKind::contact;  // a plane for a thermal condition only (parse_scene)
+  else w.expected("kind", "one of \"contact\", \"roller\", \"fixed\", \"thermal\"");
   if (w.has("friction")) {
     if (wall.kind != mpm::WallKind::contact)
       w.fail("friction", "expected no friction for kind = \"" + kind + "\" (friction applies to contact walls only)");
@@ -405,11 +406,24 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   }
 
   NameRegistry wall_names("wall");
-  std::vector<mpm::ThermalWallCondition> wall_thermal;
+  NameRegistry thermal_plane_names("wall");
+  std::vector<mpm::ThermalWallCondition<2>> wall_thermal;
   for (const Section& w : top.array_of_tables("walls", false)) {
-    problem.walls.push_back(read_wall(w));
-    wall_names.add(w, problem.walls.back().name);
-    if (auto c = read_wall_thermal(w, problem.walls.size() - 1)) wall_thermal.push_back(*c);
+    const mpm::WallSpec<2> wall = read_wall(w);
+    if (w.optional_string("kind") == std::optional<std::string>("thermal")) {
+      // A plane that only carries a thermal condition: no force, not a platen, not in the series.
+      if (!w.has("thermal"))
+        w.fail("thermal", "missing required key: a wall of kind = \"thermal\" exists only to carry thermal = { ... }");
+      if (w.has("friction")) w.fail("friction", "expected no friction for kind = \"thermal\" (it exerts no force)");
+      if (wall_names.index(wall.name) >= 0) wall_names.add(w, wall.name);  // reports the duplicate
+      thermal_plane_names.add(w, wall.name);
+      wall_thermal.push_back(*read_wall_thermal(w, wall));
+      continue;
+    }
+    if (thermal_plane_names.index(wall.name) >= 0) thermal_plane_names.add(w, wall.name);  // duplicate
+    problem.walls.push_back(wall);
+    wall_names.add(w, wall.name);
+    if (auto c = read_wall_thermal(w, wall)) wall_thermal.push_back(*c);
   }
   if (auto contact = top.optional_table("contact")) {
     problem.contact = read_contact(*contact);

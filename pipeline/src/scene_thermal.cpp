@@ -30,12 +30,15 @@ std::optional<double> read_body_temperature(const Section& body) {
   return absolute_temperature(body, "temperature");
 }
 
-std::optional<mpm::ThermalWallCondition> read_wall_thermal(const Section& w, std::size_t wall) {
+std::optional<mpm::ThermalWallCondition<2>> read_wall_thermal(const Section& w, const mpm::WallSpec<2>& wall) {
   const std::optional<Section> t = w.optional_table("thermal");
   if (!t) return std::nullopt;
   t->allow_only({"temperature", "flux", "film_coefficient", "ambient"});
-  mpm::ThermalWallCondition c;
-  c.wall = wall;
+  mpm::ThermalWallCondition<2> c;
+  c.name = wall.name;
+  c.point = wall.point;
+  c.normal = wall.normal;
+  c.velocity = wall.velocity;
   const int given = int(t->has("temperature")) + int(t->has("flux")) + int(t->has("film_coefficient"));
   if (given != 1)
     t->fail_table("expected exactly one of temperature (fixed temperature), flux (heat flux into the material) or "
@@ -74,7 +77,7 @@ void read_contact_conductance(const Section& c, mpm::ThermalSpec<2>& thermal) {
 
 void compile_thermal(mpm::Problem<2>& problem, const std::vector<Section>& material_sections,
                      const std::vector<std::optional<double>>& body_temperature,
-                     const std::vector<mpm::ThermalWallCondition>& wall_conditions) {
+                     const std::vector<mpm::ThermalWallCondition<2>>& wall_conditions) {
   std::string reason;
   for (std::size_t m = 0; m < material_sections.size() && reason.empty(); ++m)
     for (std::string_view k : thermal_material_keys())
@@ -87,7 +90,7 @@ void compile_thermal(mpm::Problem<2>& problem, const std::vector<Section>& mater
   if (reason.empty() && !problem.thermal.edge_loads.empty())
     reason = "load '" + problem.thermal.edge_loads.front().name + "' puts heat into a body";
   if (reason.empty() && !wall_conditions.empty())
-    reason = "wall '" + problem.walls[wall_conditions.front().wall].name + "' has a thermal condition";
+    reason = "wall '" + wall_conditions.front().name + "' has a thermal condition";
   if (reason.empty()) return;  // module off: no thermal arrays (DESIGN §4)
 
   problem.thermal.reason = reason;

@@ -18,7 +18,7 @@ const std::vector<std::string_view>& thermal_material_keys();
 std::optional<double> read_body_temperature(const Section& body);
 
 /// The `thermal = { … }` table of a [[walls]] entry, for wall index `wall`.
-std::optional<mpm::ThermalWallCondition> read_wall_thermal(const Section& wall_section, std::size_t wall);
+std::optional<mpm::ThermalWallCondition<2>> read_wall_thermal(const Section& wall_section, const mpm::WallSpec<2>& wall);
 
 /// `conductance`, `conductance_pressure`, `conductance_exponent` of [contact] (000 eq. 12-13).
 void read_contact_conductance(const Section& contact, mpm::ThermalSpec<2>& thermal);
@@ -31,6 +31,6 @@ void read_contact_conductance(const Section& contact, mpm::ThermalSpec<2>& therm
 /// `body_temperature[b]` is per body id; `wall_conditions` were read by read_wall_thermal.
 void compile_thermal(mpm::Problem<2>& problem, const std::vector<Section>& material_sections,
                      const std::vector<std::optional<double>>& body_temperature,
-                     const std::vector<mpm::ThermalWallCondition>& wall_conditions);
+                     const std::vector<mpm::ThermalWallCondition<2>>& wall_conditions);
 
 }  // namespace fragmpm::pipeline::scene_detail

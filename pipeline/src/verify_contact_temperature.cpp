@@ -3,8 +3,8 @@
 // the outer faces at θ_hot and θ_cool: with κ̄ = h_c l / κ the faces of the interface sit at
 //   θ₁ = ((1 + κ̄) θ_hot + κ̄ θ_cool) / (1 + 2κ̄)  (upper block),
 //   θ₂ = ((1 + κ̄) θ_cool + κ̄ θ_hot) / (1 + 2κ̄)  (lower block).
-// The simulated face temperature of each block is its particles' least-squares line θ(y) taken at
-// the interface y = l (each block is linear at steady state).
+// The simulated face temperature of each block is its field's nodal temperature at the interface.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -23,20 +23,29 @@ namespace {
 constexpr double block = 2.5e-3;  // l [m], as in scenes/verify/contact-temperature.toml
 constexpr double hot = 323.15, cool = 293.15;  // [K]
 
-/// θ(y = l) of the least-squares line through the particles of `body`.
-double face_temperature(const mpm::Particles<2>& P, int body) {
-  double n = 0, sy = 0, st = 0, syy = 0, syt = 0;
+/// Temperature of `body`'s field at the interface nodes: the capacity-weighted projection
+/// Σ S̄_ip m_p θ_p / Σ S̄_ip m_p onto the node row y = l (000 Alg. 2 line 19), which is what the
+/// solver's heat equation holds there. Along y the CPDI weight of an undeformed, axis-aligned
+/// particle domain [y_p − a/2, y_p + a/2] is the mean of the hat over it; the problem is uniform in x.
+/// (The particles' own values carry the grid-invisible remnant of eq. 62 updates, see
+/// verify_conduction.cpp, and are not the field the equation solves for.)
+double face_temperature(const mpm::Particles<2>& P, int body, double cell_size) {
+  auto hat_mean = [&](double lo, double hi) {  // mean over [lo, hi] of max(0, 1 − |y − l|/h)
+    auto integral = [&](double y) {  // ∫_{l−h}^{y} hat
+      const double t = std::clamp((y - block) / cell_size, -1.0, 1.0);
+      return cell_size * (t <= 0.0 ? 0.5 * (1.0 + t) * (1.0 + t) : 1.0 - 0.5 * (1.0 - t) * (1.0 - t));
+    };
+    return (integral(hi) - integral(lo)) / (hi - lo);
+  };
+  double weight = 0.0, heat = 0.0;
   for (std::size_t p = 0; p < P.size(); ++p) {
     if (P.body[p] != body) continue;
-    const double y = P.x[p][1], t = P.temperature[p];
-    n += 1;
-    sy += y;
-    st += t;
-    syy += y * y;
-    syt += y * t;
+    const double half = 0.5 * (std::abs(P.domain[p](1, 0)) + std::abs(P.domain[p](1, 1)));
+    const double w = hat_mean(P.x[p][1] - half, P.x[p][1] + half) * P.mass[p];
+    weight += w;
+    heat += w * P.temperature[p];
   }
-  const double slope = (n * syt - sy * st) / (n * syy - sy * sy);
-  return (st - slope * sy) / n + slope * block;
+  return heat / weight;
 }
 
 std::vector<VerifyRow> run_level(double kappa_bar, int level, double cell_size) {
@@ -51,7 +60,8 @@ std::vector<VerifyRow> run_level(double kappa_bar, int level, double cell_size) 
   const double end_time = problem.stop.end_time;
   mpm::Solver<2> solver(std::move(problem));
   const TimedRun run = run_until(solver, end_time, "contact-temperature", end_time, [](const mpm::Solver<2>&) {});
-  const double upper = face_temperature(solver.particles(), 1), lower = face_temperature(solver.particles(), 0);
+  const double upper = face_temperature(solver.particles(), 1, cell_size);
+  const double lower = face_temperature(solver.particles(), 0, cell_size);
   const double theta1 = ((1.0 + kappa_bar) * hot + kappa_bar * cool) / (1.0 + 2.0 * kappa_bar);
   const double theta2 = ((1.0 + kappa_bar) * cool + kappa_bar * hot) / (1.0 + 2.0 * kappa_bar);
   char variant[32];

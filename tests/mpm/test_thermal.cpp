@@ -231,3 +231,16 @@ TEST(ThermalSolver, ConductionMatchesTheErfcSolution) {
   EXPECT_LT(rows[4].value, 0.01);  // finest quick level, 1 ms
   EXPECT_LT(rows[5].value, 0.01);  // 4 ms
 }
+
+TEST(ThermalSolver, ContactFaceTemperaturesOfPressedBlocksMatchEq90) {
+  // V3: steady conduction through two pressed blocks with h_c = γ̄|p| (000 eq. 13, 90), three
+  // pressures; the contact heat uses the step's normal contact impulse (eq. 82).
+  pipeline::VerifyOptions options;
+  options.quick = true;
+  const auto rows = pipeline::verify_contact_temperature(options);
+  ASSERT_EQ(rows.size(), 6u);
+  for (const auto& r : rows) EXPECT_LT(r.error, 0.3) << r.variant << " " << r.metric;
+  // The jump across the interface shrinks as the pressure (κ̄) grows.
+  EXPECT_GT(rows[0].value - rows[1].value, rows[2].value - rows[3].value);
+  EXPECT_GT(rows[2].value - rows[3].value, rows[4].value - rows[5].value);
+}

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fragmpm/mpm/types.hpp"
+#include "fragmpm/mpm/velocity_history.hpp"
 
 namespace fragmpm::mpm {
 
@@ -19,8 +20,8 @@ struct ThermalMaterial {
   double reference_temperature = 0.0;  ///< θ₀ [K] of the coupling energy M (000 eq. 3); zero thermal stress at θ₀
 };
 
-/// A thermal condition on the material a rigid wall touches (000 eq. 44, 57): nodes that lie on or
-/// behind the wall plane and carry material.
+/// A thermal condition on the material next to a plane (000 eq. 44, 57): a rigid wall's plane, or a
+/// plane that only carries the condition (scene kind = "thermal", no mechanical action).
 enum class ThermalWallKind {
   insulated,    ///< q·n = 0 (the natural condition; the default)
   temperature,  ///< θ = θ̄ at the wall nodes (Γ_θ)
@@ -28,8 +29,12 @@ enum class ThermalWallKind {
   convection,   ///< q into the material = h (θ_∞ − θ) [W/m²] (Γ_h)
 };
 
+template <int D>
 struct ThermalWallCondition {
-  std::size_t wall = 0;  ///< index into Problem::walls
+  std::string name;
+  Vec<D> point = Vec<D>::Zero();   ///< a point of the plane at t = 0 [m]
+  Vec<D> normal = Vec<D>::Zero();  ///< unit, into the material
+  VelocityHistory<D> velocity;     ///< the plane moves with its wall
   ThermalWallKind kind = ThermalWallKind::insulated;
   double temperature = 0.0;  ///< θ̄ (temperature) or θ_∞ (convection) [K]
   double flux = 0.0;         ///< q̄ into the material [W/m²] (flux)
@@ -51,7 +56,7 @@ struct HeatFluxLoad {
 template <int D>
 struct ThermalSpec {
   std::vector<ThermalMaterial> materials;  ///< one per problem material; empty = module off
-  std::vector<ThermalWallCondition> walls;
+  std::vector<ThermalWallCondition<D>> walls;
   std::vector<HeatFluxLoad> edge_loads;
   /// Contact conductance h_c = h₀ |p/p₀|^ε at separable nodes in contact (000 eq. 12; ε = 1 is
   /// eq. 13 with γ̄ = h₀/p₀). h₀ = 0: contacts pass no heat by conduction (friction heat still flows).
