@@ -612,11 +612,13 @@ struct Solver<D>::Impl {
               pair.velocity_b = wall_velocity;
               pair.normal = -wall.normal;  // from the material towards the wall
               pair.area = 0.0;
+              if (thermal) pair.temperature = thermal->node_temperature(f, static_cast<std::size_t>(i));
               const ContactExchange<D> exchange =
                   exchange_momentum<D>(pair, wall.friction, dt, FrictionWorkOrder::first);
               if (!exchange.in_contact) continue;
               change = exchange.momentum_change_a / m;
               friction += exchange.friction_work;
+              if (thermal) thermal->add_wall_friction_heat(f, static_cast<std::size_t>(i), exchange.friction_work);
               break;
             }
           }

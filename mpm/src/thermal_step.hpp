@@ -63,6 +63,8 @@ class ThermalModule {
     for (const ThermalWallCondition<D>& c : problem.thermal.walls)
       if (c.kind == ThermalWallKind::flux || c.kind == ThermalWallKind::convection) boundary_measure_ = true;
     if (!problem.thermal.edge_loads.empty()) edge_source_.assign(n, 0.0);
+    for (const WallSpec<D>& w : problem.walls)
+      if (w.kind == WallKind::contact) wall_friction_ = true;
     dt_limit_ = thermal_stable_time_step<D>(problem, P, problem.time.cfl);
   }
 
@@ -74,6 +76,10 @@ class ThermalModule {
 
   /// Conduction limit from the last thermal stage (C_cfl ρ c h² / (2 D κ)) [s].
   double dt_limit() const { return dt_limit_; }
+
+  /// Friction work [J] of a rigid contact wall at field f of node i in this step: it all becomes
+  /// heat of the material (the wall is rigid and has no heat capacity in the model).
+  void add_wall_friction_heat(int f, std::size_t i, double work) { wall_heat_[static_cast<std::size_t>(f)][i] += work; }
 
   /// Nodal temperature of field f at active node i after the re-projection of this step [K].
   double node_temperature(int f, std::size_t i) const { return temperature_[static_cast<std::size_t>(f)][i]; }
@@ -96,6 +102,7 @@ class ThermalModule {
       load_[f].assign(nodes, 0.0);
       temperature_[f].assign(nodes, 0.0);
       rate_[f].assign(nodes, 0.0);
+      if (wall_friction_) wall_heat_[f].assign(nodes, 0.0);
       if (boundary_measure_) domain_gradient_[f].assign(nodes, Vec<D>::Zero());
     }
     auto field = [&](std::int64_t p, std::size_t i) -> int {
@@ -167,6 +174,9 @@ class ThermalModule {
     // 3. Thermal conditions on walls (000 eq. 44, 57); heat across and from separable contacts.
     if (!spec.walls.empty()) apply_wall_loads(host, fields);
     if constexpr (Partitioned) add_contact_heat(host, dt);
+    if (wall_friction_)
+      for (int f = 0; f < fields; ++f)
+        for (std::int64_t i = 0; i < count; ++i) load_[f][i] += wall_heat_[f][i] / dt;
 
     // 4. Nodal rates (eq. 55); two fields that are not separable share one rate (Alg. 2 line 10).
 #pragma omp parallel for schedule(static)
@@ -331,10 +341,11 @@ class ThermalModule {
   std::vector<char> damages_;
   std::vector<double> last_J_, last_damage_;  ///< J and d when the sources were last booked
   std::vector<double> edge_source_;
-  std::array<std::vector<double>, 2> capacity_, heat_, load_, temperature_, rate_;
+  std::array<std::vector<double>, 2> capacity_, heat_, load_, temperature_, rate_, wall_heat_;
   std::array<std::vector<Vec<D>>, 2> domain_gradient_;
   std::vector<FixedNode> fixed_nodes_;
   bool boundary_measure_ = false;
+  bool wall_friction_ = false;  ///< a contact wall may do friction work
   double negligible_capacity_ = 0.0;
   double dt_limit_ = std::numeric_limits<double>::infinity();
 };

@@ -244,3 +244,139 @@ TEST(ThermalSolver, ContactFaceTemperaturesOfPressedBlocksMatchEq90) {
   EXPECT_GT(rows[0].value - rows[1].value, rows[2].value - rows[3].value);
   EXPECT_GT(rows[2].value - rows[3].value, rows[4].value - rows[5].value);
 }
+
+namespace {
+
+// A still strip 4 × 1 mm, insulated except where a test adds heat at x = 0.
+const char* strip_scene = R"toml(
+[grid]
+cell_size = "0.5 mm"
+min = ["-1 mm", "-1 mm"]
+max = ["6 mm", "3 mm"]
+[[materials]]
+name = "solid"
+E = "10 kPa"
+nu = 0.3
+density = "1000 kg/m3"
+heat_capacity = "100 J/(kg K)"
+conductivity = "10 W/(m K)"
+temperature = "300 K"
+[[bodies]]
+name = "strip"
+material = "solid"
+shape = "box"
+min = ["0 mm", "0 mm"]
+max = ["4 mm", "1 mm"]
+HEAT
+[stop]
+end_time = "2 ms"
+)toml";
+
+double heat_after(const std::string& heat, double end_time) {
+  auto problem = pipeline::parse_scene(replaced(strip_scene, "HEAT", heat), "strip.toml");
+  EXPECT_TRUE(problem.thermal.active());
+  mpm::Solver<2> solver(std::move(problem));
+  while (solver.time() < end_time * (1.0 - 1e-12)) {
+    auto failure = solver.step(end_time - solver.time());
+    if (failure) ADD_FAILURE() << failure->what;
+    if (failure) break;
+  }
+  EXPECT_FALSE(solver.step(1e-15));  // books nothing new; keeps the last row current
+  return solver.last_row().thermal;
+}
+
+}  // namespace
+
+TEST(ThermalBoundary, FluxThroughAThermalPlaneAddsExactlyQTimesFaceTimesTime) {
+  // 000 eq. 57: Q_i = ∫ S_i q̄ dΓ; the face length per node from ∮ S_i n dΓ = ∫ ∇S_i dV sums to
+  // the face, 1 mm, so the heat content grows by q̄ · 1 mm · t.
+  const double heat = heat_after(R"toml(
+[[walls]]
+name = "heater"
+point = ["0 mm", "0 mm"]
+normal = [1, 0]
+kind = "thermal"
+thermal = { flux = "2 MW/m2" }
+)toml", 1e-3);
+  EXPECT_NEAR(heat, 2e6 * 1e-3 * 1e-3, 1e-9 * 2.0);
+}
+
+TEST(ThermalBoundary, HeatFluxLoadOnABodyEdgeAddsExactlyQTimesEdgeTimesTime) {
+  const double heat = heat_after(R"toml(
+[[loads]]
+name = "heater"
+body = "strip"
+side = "-x"
+heat_flux = "-1 MW/m2"
+)toml", 1e-3);
+  EXPECT_NEAR(heat, -1e6 * 1e-3 * 1e-3, 1e-9);
+}
+
+TEST(ThermalBoundary, ConvectionRelaxesTowardsTheAmbientWithoutOvershoot) {
+  const double heat = heat_after(R"toml(
+[[walls]]
+name = "air"
+point = ["4 mm", "0 mm"]
+normal = [-1, 0]
+kind = "thermal"
+thermal = { film_coefficient = "1 kW/(m2 K)", ambient = "400 K" }
+)toml", 2e-3);
+  // Heat flows in, bounded by h ΔT A t = 1e3 · 100 · 1e-3 · 2e-3 = 2e-4 J/m and by the capacity
+  // m c ΔT = 1000 · 4e-6 · 100 · 100 = 40 J/m.
+  EXPECT_GT(heat, 0.5 * 2e-4);
+  EXPECT_LT(heat, 2e-4);
+}
+
+TEST(ThermalScene, ThermalDataWithoutHeatCapacityIsRefusedWithFileLineAndKey) {
+  std::string text = replaced(squeeze_scene, "heat_capacity = \"1000 J/(kg K)\"\n", "");
+  try {
+    pipeline::parse_scene(text, "squeeze.toml");
+    FAIL() << "expected a scene error";
+  } catch (const pipeline::SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("squeeze.toml"), std::string::npos) << what;
+    EXPECT_NE(what.find("heat_capacity"), std::string::npos) << what;
+  }
+  EXPECT_THROW(pipeline::parse_scene(replaced(squeeze_scene, "\"1e-4 1/K\"", "\"5 m\""), "squeeze.toml"),
+               pipeline::SceneError);
+}
+
+TEST(ThermalContact, FrictionalHeatEqualsFrictionWorkAtAWall) {
+  // A block sliding on a floor with Coulomb friction: all friction work of the wall (004 eq. 27)
+  // becomes heat of the block, so the heat content equals /series/friction_work.
+  const char* scene = R"toml(
+[grid]
+cell_size = "1 mm"
+min = ["-2 mm", "-2 mm"]
+max = ["40 mm", "10 mm"]
+[physics]
+gravity = ["0 m/s2", "-9.81e5 m/s2"]
+[[materials]]
+name = "block"
+E = "100 MPa"
+nu = 0.3
+density = "1000 kg/m3"
+heat_capacity = "500 J/(kg K)"
+conductivity = "5 W/(m K)"
+[[bodies]]
+name = "block"
+material = "block"
+shape = "box"
+min = ["2 mm", "0 mm"]
+max = ["10 mm", "4 mm"]
+velocity = ["5 m/s", "0 m/s"]
+[[walls]]
+name = "floor"
+point = ["0 mm", "0 mm"]
+normal = [0, 1]
+kind = "contact"
+friction = 0.3
+[stop]
+max_steps = 400
+)toml";
+  mpm::Solver<2> solver(pipeline::parse_scene(scene, "slide.toml"));
+  for (int s = 0; s < 400; ++s) ASSERT_FALSE(solver.step());
+  const double work = solver.accumulators().friction_work;
+  EXPECT_GT(work, 0.0);
+  EXPECT_NEAR(solver.last_row().thermal, work, 1e-9 * work);
+}
