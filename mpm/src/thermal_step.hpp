@@ -151,6 +151,7 @@ class ThermalModule {
       if constexpr (Partitioned) return host.field_of(p, i);
       else return 0;
     };
+    if constexpr (Partitioned) merge_perfect_contacts(host, dt);
 
     // 2. Conduction Q_i^int = Σ_p V_p q_p·∇S̄_ip with q_p = −κ_p ∇θ(x_p) (000 eq. 18, 58), and heat
     //    input through body edges carried by particles, Q_i += S̄_ip a_p q̄ (eq. 57).
@@ -185,7 +186,7 @@ class ThermalModule {
         if (capacity_[f][i] > negligible_capacity_) rate_[f][i] = load_[f][i] / capacity_[f][i];
       if constexpr (Partitioned) {
         if (capacity_[0][i] > negligible_capacity_ && capacity_[1][i] > negligible_capacity_ &&
-            !host.node_separable(static_cast<std::size_t>(i))) {
+            (!host.node_separable(static_cast<std::size_t>(i)) || merged_[static_cast<std::size_t>(i)])) {
           const double shared = (load_[0][i] + load_[1][i]) / (capacity_[0][i] + capacity_[1][i]);
           rate_[0][i] = rate_[1][i] = shared;
         }
@@ -295,9 +296,40 @@ class ThermalModule {
   /// conductance h_c = h₀ |p/p₀|^ε with the contact pressure p = f_n / A_c from this step's normal
   /// contact impulse (f_n = N A_c = impulse/Δt) and area A_c (004 eq. 11), so the nodal load is
   /// Q₀ = h_c A_c (θ₁ − θ₀) = −Q₁; for ε = 1 this is γ̄ |f_n| [θ] of eq. (82) and needs no area.
-  /// The explicit exchange is capped at what equalises the two nodal temperatures in one step
-  /// (C₀C₁/(C₀+C₁) |θ₁ − θ₀| / Δt): a perfectly conducting contact is then one body, never an
-  /// overshoot. The friction work W of the step is heat W/Δt, half into each side (eq. 14, 82).
+  /// Contacts that would equalise within the step are merged instead (merge_perfect_contacts), so
+  /// the explicit flow never overshoots. The friction work W of the step is heat W/Δt, half into each side (eq. 14, 82).
+  /// Conductance of a separable contact node in contact this step, h_c A_c [W/K per unit thickness]
+  /// (000 eq. 12-13, 82): 0 when the node is not in contact or nothing conducts.
+  template <class Host>
+  double contact_conductance(const Host& host, std::size_t k, double dt) const {
+    const ThermalSpec<D>& spec = host.problem.thermal;
+    const double impulse = host.node_normal_impulse[k];
+    if (!(spec.contact_conductance > 0.0) || !(impulse > 0.0)) return 0.0;
+    const double force = impulse / dt;
+    if (spec.contact_exponent == 1.0) return spec.contact_conductance / spec.contact_pressure * force;
+    const double area = host.node_contact_area[k];
+    if (!(area > 0.0)) return 0.0;
+    return spec.contact_conductance * std::pow(force / (area * spec.contact_pressure), spec.contact_exponent) * area;
+  }
+
+  /// A contact whose conductance would equalise the two nodal temperatures within one step
+  /// (h_c A_c Δt ≥ C₀C₁/(C₀+C₁)) is thermally perfect: its fields share one temperature and one
+  /// rate, as non-separable fields do (Alg. 2 line 10). Exchanging the capped flow explicitly
+  /// instead would leave a numerical resistance Δt(1/C₀ + 1/C₁) at the node.
+  template <class Host>
+  void merge_perfect_contacts(const Host& host, double dt) {
+    merged_.assign(capacity_[0].size(), 0);
+    for (std::size_t k = 0; k < host.two_field_nodes.size(); ++k) {
+      const std::size_t i = static_cast<std::size_t>(host.two_field_nodes[k]);
+      const double c0 = capacity_[0][i], c1 = capacity_[1][i];
+      if (!(c0 > negligible_capacity_ && c1 > negligible_capacity_) || !host.node_separable(i)) continue;
+      if (contact_conductance(host, k, dt) * dt < c0 * c1 / (c0 + c1)) continue;
+      merged_[i] = 1;
+      const double theta = (heat_[0][i] + heat_[1][i]) / (c0 + c1);
+      temperature_[0][i] = temperature_[1][i] = theta;
+    }
+  }
+
   template <class Host>
   void add_contact_heat(Host& host, double dt) {
     const ThermalSpec<D>& spec = host.problem.thermal;
@@ -310,18 +342,9 @@ class ThermalModule {
       const double friction_heat = host.node_friction_work[k] / dt;
       load_[0][i] += 0.5 * friction_heat;
       load_[1][i] += 0.5 * friction_heat;
-      const double impulse = host.node_normal_impulse[k];
-      if (!conducts || !(impulse > 0.0)) continue;
-      const double force = impulse / dt;
-      double conductance_area = 0.0;  // h_c A_c [W/K per unit thickness]
-      if (spec.contact_exponent == 1.0) {
-        conductance_area = spec.contact_conductance / spec.contact_pressure * force;
-      } else {
-        const double area = host.node_contact_area[k];
-        if (!(area > 0.0)) continue;
-        conductance_area =
-            spec.contact_conductance * std::pow(force / (area * spec.contact_pressure), spec.contact_exponent) * area;
-      }
+      if (!conducts || merged_[i]) continue;
+      const double conductance_area = contact_conductance(host, k, dt);
+      if (!(conductance_area > 0.0)) continue;
       const double jump = temperature_[1][i] - temperature_[0][i];
       const double equalising = c0 * c1 / (c0 + c1) / dt;
       const double flow = std::min(conductance_area, equalising) * jump;  // into field 0 [W]
@@ -344,6 +367,7 @@ class ThermalModule {
   std::array<std::vector<double>, 2> capacity_, heat_, load_, temperature_, rate_, wall_heat_;
   std::array<std::vector<Vec<D>>, 2> domain_gradient_;
   std::vector<FixedNode> fixed_nodes_;
+  std::vector<char> merged_;  ///< per node: a thermally perfect contact this step
   bool boundary_measure_ = false;
   bool wall_friction_ = false;  ///< a contact wall may do friction work
   double negligible_capacity_ = 0.0;

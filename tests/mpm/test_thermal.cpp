@@ -2,12 +2,14 @@
 // thermal wall conditions, and that a scene without thermal data runs exactly as before.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
 
 #include "fragmpm/mpm/solver.hpp"
 #include "fragmpm/mpm/thermal.hpp"
+#include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/verify.hpp"
 
@@ -379,4 +381,107 @@ max_steps = 400
   const double work = solver.accumulators().friction_work;
   EXPECT_GT(work, 0.0);
   EXPECT_NEAR(solver.last_row().thermal, work, 1e-9 * work);
+}
+
+namespace {
+
+/// Capacity-weighted projection of `body`'s particle temperatures onto the node row y (the nodal
+/// temperature of the solver's heat equation, 000 Alg. 2 line 19) for undeformed axis-aligned
+/// particle domains of a problem uniform in x: the weight is the mean of the hat over the domain.
+/// body = −1: all bodies (the node temperature of merged fields).
+double node_row_temperature(const mpm::Particles<2>& P, int body, double y, double h) {
+  auto integral = [&](double s) {
+    const double t = std::clamp((s - y) / h, -1.0, 1.0);
+    return h * (t <= 0.0 ? 0.5 * (1.0 + t) * (1.0 + t) : 1.0 - 0.5 * (1.0 - t) * (1.0 - t));
+  };
+  double weight = 0.0, heat = 0.0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    if (body >= 0 && P.body[p] != body) continue;
+    const double half = 0.5 * (std::abs(P.domain[p](1, 0)) + std::abs(P.domain[p](1, 1)));
+    const double w = (integral(P.x[p][1] + half) - integral(P.x[p][1] - half)) / (2.0 * half) * P.mass[p];
+    weight += w;
+    heat += w * P.temperature[p];
+  }
+  return heat / weight;
+}
+
+}  // namespace
+
+TEST(ThermalContact, PerfectlyConductingContactPassesTheBulkFlux) {
+  // The pressed blocks of V3 with an enormous conductance: the contact nodes are merged into one
+  // thermal field (merge_perfect_contacts), so the contact conducts like the bulk. Steady state: one linear profile
+  // from 20 °C to 50 °C over 5 mm, the same flux κ ΔT / L in both blocks, no jump at the interface.
+  auto problem = pipeline::parse_scene(
+      pipeline::with_overrides(pipeline::embedded_scene("verify/contact-temperature.toml"),
+                               {{"contact.conductance", "\"1e12 W/(m2 K)\""}, {"output.interval", "0.0"}}),
+      "contact-temperature.toml");
+  const double end = problem.stop.end_time, h = problem.grid.cell_size;
+  mpm::Solver<2> solver(std::move(problem));
+  while (solver.time() < end * (1.0 - 1e-12)) ASSERT_FALSE(solver.step(end - solver.time()));
+  const auto& P = solver.particles();
+  // The merged interface node holds the mean of the linear profile.
+  EXPECT_NEAR(node_row_temperature(P, -1, 2.5e-3, h), 308.15, 0.01);
+  const double bulk_gradient = 30.0 / 5e-3;  // [K/m]
+  const double lower_gradient = (node_row_temperature(P, 0, 2.0e-3, h) - node_row_temperature(P, 0, 0.5e-3, h)) / 1.5e-3;
+  const double upper_gradient = (node_row_temperature(P, 1, 4.5e-3, h) - node_row_temperature(P, 1, 3.0e-3, h)) / 1.5e-3;
+  EXPECT_NEAR(lower_gradient, bulk_gradient, 1e-4 * bulk_gradient);
+  EXPECT_NEAR(upper_gradient, bulk_gradient, 1e-4 * bulk_gradient);
+}
+
+TEST(ThermalContact, ThermalSofteningFrictionVanishesAtTheDamageTemperature) {
+  // A slider pushed onto a base by gravity slides with μ(θ) = μ₀⟨θ_dam − θ⟩²/(θ_dam − θ_ref)²
+  // (000 eq. 15), θ from the nodal temperatures of the two fields: at θ_ref it does friction work,
+  // at and above θ_dam none at all.
+  const std::string scene = R"toml(
+[grid]
+cell_size = "1 mm"
+min = ["-2 mm", "-2 mm"]
+max = ["40 mm", "12 mm"]
+[physics]
+gravity = ["0 m/s2", "-1e5 m/s2"]
+[[materials]]
+name = "m"
+E = "100 MPa"
+nu = 0.3
+density = "1000 kg/m3"
+heat_capacity = "500 J/(kg K)"
+temperature = "TEMP"
+[[bodies]]
+name = "base"
+material = "m"
+shape = "box"
+min = ["0 mm", "0 mm"]
+max = ["38 mm", "4 mm"]
+[[bodies]]
+name = "slider"
+material = "m"
+shape = "box"
+min = ["4 mm", "4 mm"]
+max = ["12 mm", "8 mm"]
+velocity = ["3 m/s", "0 m/s"]
+[[walls]]
+name = "floor"
+point = ["0 mm", "0 mm"]
+normal = [0, 1]
+kind = "fixed"
+[contact]
+partitioning = "bodies"
+friction = { law = "thermal-softening", mu = 0.5, theta_ref = "300 K", theta_dam = "400 K" }
+[stop]
+max_steps = 300
+)toml";
+  auto friction_work = [&](const std::string& temperature) {
+    mpm::Solver<2> solver(pipeline::parse_scene(replaced(scene, "TEMP", temperature), "slider.toml"));
+    for (int s = 0; s < 300; ++s) {
+      auto failure = solver.step();
+      if (failure) ADD_FAILURE() << failure->what;
+      if (failure) break;
+    }
+    return solver.accumulators().friction_work;
+  };
+  const double cold = friction_work("300 K");
+  EXPECT_GT(cold, 0.0);
+  // At θ_dam itself μ is zero up to the round-off of the nodal re-projection of θ = 400 K.
+  EXPECT_LT(friction_work("400 K"), 1e-20 * cold);
+  EXPECT_EQ(friction_work("450 K"), 0.0);
 }
