@@ -15,6 +15,8 @@
 #include "fragmpm/mpm/grid_index.hpp"
 #include "fragmpm/mpm/neo_hookean.hpp"
 #include "fragmpm/mpm/shape_functions.hpp"
+#include "fragmpm/mpm/thermal.hpp"
+#include "thermal_step.hpp"
 
 namespace fragmpm::mpm {
 
@@ -100,7 +102,9 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   else
     partition_reason = "one body and no damage: one velocity field, no neighbour search";
   plan.push_back({"partitioning", partitioning_active(problem), partition_reason});
-  plan.push_back({"thermal", false, "no thermal data and no heat sources: no thermal arrays"});
+  plan.push_back({"thermal", problem.thermal.active(),
+                  problem.thermal.active() ? problem.thermal.reason
+                                           : "no thermal data and no heat sources: no thermal arrays"});
   return plan;
 }
 
@@ -117,11 +121,13 @@ double stable_time_step(const Problem<D>& problem, const Particles<D>& particles
     const double c = models[particles.material[p]].wave_speed(density);
     max_speed = std::max(max_speed, c + particles.v[p].norm());
   }
-  if (max_speed <= 0.0) return std::numeric_limits<double>::infinity();
+  // The explicit conduction limit joins the CFL limit when the thermal module runs (DESIGN §4).
+  const double thermal_limit = thermal_stable_time_step<D>(problem, particles, cfl);
+  if (max_speed <= 0.0) return thermal_limit;
   // Multilinear hats with a lumped mass: the stiffest grid mode of a cell has ω = 2c√D/h, so
   // central-difference stepping is stable for Δt < 2/ω = h/(c√D). The DESIGN's h/c is the 1D value
   // and lets a 2D scene run unstably at C_cfl close to 1.
-  return cfl * problem.grid.cell_size / (std::sqrt(double(D)) * max_speed);
+  return std::min(thermal_limit, cfl * problem.grid.cell_size / (std::sqrt(double(D)) * max_speed));
 }
 
 template <int D>
@@ -172,10 +178,14 @@ struct Solver<D>::Impl {
   std::vector<double> node_dhat_max;                      ///< largest d̂ mapping to the node
   std::vector<std::int64_t> two_field_nodes;
   std::vector<double> node_friction_work;
+  std::vector<double> node_normal_impulse, node_contact_area;  ///< per two-field node, for contact heat
   long long contact_nodes_last_step = 0;
 
   // ---- traction loads
   std::vector<Vec<D>> load_force;  ///< f_p of this step [N per unit thickness in 2D]
+
+  // ---- thermal module (thermal_step.hpp); exists only when the scene needs it
+  std::unique_ptr<ThermalModule<D>> thermal;
 
   explicit Impl(Problem<D> p) : problem(std::move(p)) {
     for (const auto& m : problem.materials) {
@@ -185,7 +195,9 @@ struct Solver<D>::Impl {
     }
     partitioned = partitioning_active(problem);
     by_bodies = problem.contact.partitioning == Partitioning::bodies;
-    needs_contact_area = std::holds_alternative<AdhesiveFriction>(problem.contact.friction);
+    // Adhesion (004 eq. 24) and contact conductance (000 eq. 12-13) scale with the contact area.
+    needs_contact_area =
+        std::holds_alternative<AdhesiveFriction>(problem.contact.friction) || problem.thermal.active();
     kernel_radius = problem.grid.cell_size * std::sqrt(double(D));
     grid.origin = problem.grid.min;
     grid.cell_size = problem.grid.cell_size;
@@ -197,7 +209,17 @@ struct Solver<D>::Impl {
     for (double m : problem.particles.mass) lightest = std::min(lightest, m);
     negligible_mass = std::isfinite(lightest) ? negligible_node_mass_fraction * lightest : 0.0;
     if (!problem.loads.empty()) load_force.assign(problem.particles.size(), Vec<D>::Zero());
+    if (problem.thermal.active()) thermal = std::make_unique<ThermalModule<D>>(problem);
     compute_stress_and_energy_of_initial_state();
+  }
+
+  /// Whether the two fields of node i (both holding mass) may separate: 001 §2.3, Alg. 3;
+  /// 000 eq. 70-71 on d̂ = max(s, d). Valid after particles_to_grid<…, true>.
+  bool node_separable(std::size_t i) const {
+    if (by_bodies) return true;
+    return node_dhat_max[i] >= problem.contact.critical_damage &&
+           std::min(node_dhat[0][i] / node_mass[0][i], node_dhat[1][i] / node_mass[1][i]) >
+               problem.contact.minimum_damage;
   }
 
   /// Stress, stored energy and damage bookkeeping of one particle from its F and damage: the
@@ -206,7 +228,8 @@ struct Solver<D>::Impl {
   double stress_and_stored_energy(std::int64_t p) {
     auto& P = problem.particles;
     const NeoHookean& model = models[P.material[p]];
-    const Mat<D> trial = model.cauchy<D>(P.F[p]);
+    Mat<D> trial = model.cauchy<D>(P.F[p]);
+    if (thermal) trial += thermal->stress(P.material[p], P.F[p], P.temperature[p]);
     const double psi = model.energy_density<D>(P.F[p]);
     const double d = P.damage[p];
     if (d <= 0.0) {
@@ -232,6 +255,7 @@ struct Solver<D>::Impl {
     row = SeriesRow<D>{};
     row.kinetic = kinetic;
     row.strain = strain;
+    row.thermal = thermal_energy<D>(problem, P);
     row.totals = totals;
     row.momentum = total_momentum();
     row.wall_force.assign(problem.walls.size(), Vec<D>::Zero());
@@ -508,6 +532,10 @@ struct Solver<D>::Impl {
       if (node_mass[1][i] > negligible_mass) two_field_nodes.push_back(i);
     const std::int64_t count = static_cast<std::int64_t>(two_field_nodes.size());
     node_friction_work.assign(two_field_nodes.size(), 0.0);
+    if (thermal) {
+      node_normal_impulse.assign(two_field_nodes.size(), 0.0);
+      node_contact_area.assign(two_field_nodes.size(), 0.0);
+    }
     const ContactSpec<D>& contact = problem.contact;
     const bool prescribed_normal = contact.normal.squaredNorm() > 0.0;
     const Vec<D> fixed_normal =
@@ -522,10 +550,7 @@ struct Solver<D>::Impl {
         node_velocity_lumped[0][i] = node_velocity_lumped[1][i];
         continue;
       }
-      // Separability (001 §2.3, Alg. 3; 000 eq. 70-71) on d̂ = max(s, d).
-      const double mean0 = node_dhat[0][i] / m0, mean1 = node_dhat[1][i] / m1;
-      const bool separable = by_bodies || (node_dhat_max[i] >= contact.critical_damage &&
-                                           std::min(mean0, mean1) > contact.minimum_damage);
+      const bool separable = node_separable(i);
       // Normal from field 0 towards field 1: mass gradients point out of their field (000 eq. 74),
       // so n₀ = (g₀ − g₁)/|g₀ − g₁| and n₁ = −n₀ exactly (momentum-conserving pair).
       Vec<D> normal = node_mass_gradient[0][i] - node_mass_gradient[1][i];
@@ -560,10 +585,15 @@ struct Solver<D>::Impl {
         const Vec<D> centre0 = node_position[0][i] / m0, centre1 = node_position[1][i] / m1;
         pair.gap_closed = (centre1 - centre0).dot(pair.normal) - 0.8 * grid.cell_size < 0.0;
       }
+      if (thermal) pair.temperature = thermal->interface_temperature(i);  // 000 eq. 15, Alg. 3 line 12
       const ContactExchange<D> exchange =
           exchange_momentum<D>(pair, contact.friction, dt, FrictionWorkOrder::first);
       if (!exchange.in_contact) continue;
       ++in_contact;
+      if (thermal) {
+        node_normal_impulse[k] = exchange.normal_impulse;
+        node_contact_area[k] = pair.area;
+      }
       node_velocity[0][i] += exchange.momentum_change_a / m0;
       node_velocity[1][i] -= exchange.momentum_change_a / m1;
       node_friction_work[k] = exchange.friction_work;
@@ -610,11 +640,13 @@ struct Solver<D>::Impl {
               pair.velocity_b = wall_velocity;
               pair.normal = -wall.normal;  // from the material towards the wall
               pair.area = 0.0;
+              if (thermal) pair.temperature = thermal->node_temperature(f, static_cast<std::size_t>(i));
               const ContactExchange<D> exchange =
                   exchange_momentum<D>(pair, wall.friction, dt, FrictionWorkOrder::first);
               if (!exchange.in_contact) continue;
               change = exchange.momentum_change_a / m;
               friction += exchange.friction_work;
+              if (thermal) thermal->add_wall_friction_heat(f, static_cast<std::size_t>(i), exchange.friction_work);
               break;
             }
           }
@@ -644,7 +676,7 @@ struct Solver<D>::Impl {
 
   /// G2P (000 eq. 64-66) and the stress update that closes the step (update-stress-last), with the
   /// damage law evaluated on the trial stress.
-  template <ShapeFunctionKind Kind, bool Partitioned>
+  template <ShapeFunctionKind Kind, bool Partitioned, bool Thermal>
   std::optional<NumericalFailure> grid_to_particles(double dt) {
     auto& P = problem.particles;
     const std::int64_t n = static_cast<std::int64_t>(P.size());
@@ -694,9 +726,10 @@ struct Solver<D>::Impl {
         }
         const int material = P.material[p];
         const NeoHookean& model = models[material];
+        Mat<D> trial = model.cauchy<D>(P.F[p]);
+        if constexpr (Thermal) trial += thermal->stress(material, P.F[p], P.temperature[p]);  // 000 eq. 3
         if (material_damages[material]) {
           const MaterialSpec& spec = problem.materials[material];
-          const Mat<D> trial = model.cauchy<D>(P.F[p]);
           const double damage_before = P.damage[p];
           // l_ch = particle size: the width of the one-particle band a crack localises in
           // (see rankine_softening_modulus for why not the paper's cell diagonal).
@@ -721,7 +754,7 @@ struct Solver<D>::Impl {
             P.stress[p] = trial;
           }
         } else {
-          P.stress[p] = model.cauchy<D>(P.F[p]);
+          P.stress[p] = trial;
           strain += P.volume0[p] * model.energy_density<D>(P.F[p]);
         }
         kinetic += 0.5 * P.mass[p] * P.v[p].squaredNorm();
@@ -776,20 +809,29 @@ struct Solver<D>::Impl {
     }
   }
 
-  template <ShapeFunctionKind Kind>
+  template <ShapeFunctionKind Kind, bool Thermal>
   std::optional<NumericalFailure> advance(double dt) {
     if (partition_this_step) {
       if (!by_bodies) nodal_damage_gradient<Kind>();
       particles_to_grid<Kind, true>();
+      if constexpr (Thermal) thermal->template begin<Kind, true>(*this);  // nodal θⁿ for friction
       update_grid_velocities(dt);
       resolve_two_field_nodes(dt);
       if (!problem.walls.empty()) apply_walls(dt);
-      return grid_to_particles<Kind, true>(dt);
+      if constexpr (Thermal) thermal->template finish<Kind, true>(*this, dt);  // 000 Alg. 1 line 5
+      return grid_to_particles<Kind, true, Thermal>(dt);
     }
     particles_to_grid<Kind, false>();
+    if constexpr (Thermal) thermal->template begin<Kind, false>(*this);
     update_grid_velocities(dt);
     if (!problem.walls.empty()) apply_walls(dt);
-    return grid_to_particles<Kind, false>(dt);
+    if constexpr (Thermal) thermal->template finish<Kind, false>(*this, dt);
+    return grid_to_particles<Kind, false, Thermal>(dt);
+  }
+
+  template <ShapeFunctionKind Kind>
+  std::optional<NumericalFailure> advance_with_modules(double dt) {
+    return thermal ? advance<Kind, true>(dt) : advance<Kind, false>(dt);
   }
 
   std::optional<NumericalFailure> take_step(double dt_cap) {
@@ -808,11 +850,15 @@ struct Solver<D>::Impl {
     if (!load_force.empty()) update_load_forces();
     std::optional<NumericalFailure> failure;
     switch (problem.grid.shape_function) {
-      case ShapeFunctionKind::linear: failure = advance<ShapeFunctionKind::linear>(dt); break;
-      case ShapeFunctionKind::ugimp: failure = advance<ShapeFunctionKind::ugimp>(dt); break;
-      case ShapeFunctionKind::cpdi: failure = advance<ShapeFunctionKind::cpdi>(dt); break;
+      case ShapeFunctionKind::linear: failure = advance_with_modules<ShapeFunctionKind::linear>(dt); break;
+      case ShapeFunctionKind::ugimp: failure = advance_with_modules<ShapeFunctionKind::ugimp>(dt); break;
+      case ShapeFunctionKind::cpdi: failure = advance_with_modules<ShapeFunctionKind::cpdi>(dt); break;
     }
     if (failure) return failure;
+    if (thermal) {
+      next_dt_limit = std::min(next_dt_limit, thermal->dt_limit());
+      row.thermal = thermal_energy<D>(problem, problem.particles);
+    }
     time += dt;
     ++step;
     row.step = step;
@@ -864,6 +910,7 @@ template <int D>
 void Solver<D>::restore(double time, long long step, const EnergyAccumulators& totals,
                         Particles<D> particles) {
   impl_->problem.particles = std::move(particles);
+  if (impl_->thermal) impl_->thermal = std::make_unique<ThermalModule<D>>(impl_->problem);
   impl_->compute_stress_and_energy_of_initial_state();
   impl_->time = time;
   impl_->step = step;

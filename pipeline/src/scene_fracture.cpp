@@ -265,6 +265,7 @@ mpm::FrictionLaw read_friction(const Section& s, std::string_view k) {
 
 mpm::ContactSpec<2> read_contact(const Section& c) {
   c.allow_only({"partitioning", "friction", "critical_damage", "minimum_damage", "rebuild_fraction", "gap_test",
+                "conductance", "conductance_pressure", "conductance_exponent",
                 "normal", "nodal_gradient"});
   mpm::ContactSpec<2> spec;
   const std::string partitioning = c.optional_string("partitioning").value_or("auto");

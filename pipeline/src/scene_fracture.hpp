@@ -41,4 +41,12 @@ mpm::ContactSpec<2> read_contact(const Section& contact);
 mpm::TractionLoad<2> read_load(const Section& load, std::size_t index, const mpm::Problem<2>& problem,
                                const std::map<std::string, std::vector<std::int32_t>>& bodies);
 
+/// True when a [[loads]] entry is a heat input (heat_flux, or film_coefficient with ambient) rather
+/// than a traction.
+bool is_heat_load(const Section& load);
+
+/// A heat-input [[loads]] entry (same particle selection as a traction; 000 eq. 44, 57).
+mpm::HeatFluxLoad read_heat_load(const Section& load, std::size_t index, const mpm::Problem<2>& problem,
+                                 const std::map<std::string, std::vector<std::int32_t>>& bodies);
+
 }  // namespace fragmpm::pipeline::scene_detail

@@ -122,12 +122,13 @@ GrainEntry read_grain_entry(const Section& b, const std::string& scene_path, int
   try {
     if (from_image) {
       b.allow_only({"name", "material", "image", "pixel_size", "origin", "velocity", "input", "crop", "threshold",
-                    "invert", "split", "drop_border", "min_area", "grain_classes", "boundary_classes"});
+                    "invert", "split", "drop_border", "min_area", "grain_classes", "boundary_classes",
+                    "temperature"});
       const SegmentOptions options = read_segment_options(b, source);
       density.assign(options.phase_bands.size() + 1, spec.density);
       e.bodies = grain_bodies_from_image(options, sampling, density);
     } else {
-      b.allow_only({"name", "material", "grains", "origin", "velocity"});
+      b.allow_only({"name", "material", "grains", "origin", "velocity", "temperature"});
       density.assign(256, spec.density);
       e.bodies = grain_bodies_from_file(source, sampling, density);
     }

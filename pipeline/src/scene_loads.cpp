@@ -66,11 +66,13 @@ void read_traction(const Section& l, mpm::TractionLoad<2>& load) {
 
 }  // namespace
 
-mpm::TractionLoad<2> read_load(const Section& l, std::size_t index, const mpm::Problem<2>& problem,
-                               const std::map<std::string, std::vector<std::int32_t>>& bodies) {
-  l.allow_only({"name", "body", "side", "region", "traction"});
-  mpm::TractionLoad<2> load;
-  load.name = l.has("name") ? l.name("name") : "load-" + std::to_string(index);
+namespace {
+
+/// The loaded boundary particles of a [[loads]] entry (`body` with `side` and/or `region`) and the
+/// boundary length each carries.
+void select_boundary(const Section& l, const mpm::Problem<2>& problem,
+                     const std::map<std::string, std::vector<std::int32_t>>& bodies,
+                     std::vector<std::int64_t>& particles, std::vector<double>& boundary_measure) {
 
   const std::string body = l.string("body");
   const auto found = bodies.find(body);
@@ -116,23 +118,59 @@ mpm::TractionLoad<2> read_load(const Section& l, std::size_t index, const mpm::P
     for (std::size_t p = 0; p < P.size(); ++p) {
       if (!in_body[static_cast<std::size_t>(P.body[p])] || !in_region(P.x[p])) continue;
       if (sign * P.x[p][axis] + 0.5 * extent(p)[axis] < extreme - tolerance) continue;
-      load.particles.push_back(static_cast<std::int64_t>(p));
-      load.boundary_measure.push_back(extent(p)[1 - axis]);
+      particles.push_back(static_cast<std::int64_t>(p));
+      boundary_measure.push_back(extent(p)[1 - axis]);
     }
   } else {
     // Boundary particles (surface flag) inside the box; each carries its domain's edge length √V₀.
     for (std::size_t p = 0; p < P.size(); ++p) {
       if (!in_body[static_cast<std::size_t>(P.body[p])] || !P.surface[p] || !in_region(P.x[p])) continue;
-      load.particles.push_back(static_cast<std::int64_t>(p));
-      load.boundary_measure.push_back(std::sqrt(std::abs(P.domain[p].determinant())));
+      particles.push_back(static_cast<std::int64_t>(p));
+      boundary_measure.push_back(std::sqrt(std::abs(P.domain[p].determinant())));
     }
   }
-  if (load.particles.empty())
+  if (particles.empty())
     l.fail(region ? "region" : "side",
            "expected a load that selects at least one particle of '" + body + "', got none" +
                (l.has("side") ? " on that side inside the region" : " (no boundary particle of the body lies in the region)"));
+}
 
+}  // namespace
+
+bool is_heat_load(const Section& l) {
+  return l.has("heat_flux") || l.has("film_coefficient") || l.has("ambient");
+}
+
+mpm::TractionLoad<2> read_load(const Section& l, std::size_t index, const mpm::Problem<2>& problem,
+                               const std::map<std::string, std::vector<std::int32_t>>& bodies) {
+  l.allow_only({"name", "body", "side", "region", "traction"});
+  mpm::TractionLoad<2> load;
+  load.name = l.has("name") ? l.name("name") : "load-" + std::to_string(index);
+  select_boundary(l, problem, bodies, load.particles, load.boundary_measure);
   read_traction(l, load);
+  return load;
+}
+
+mpm::HeatFluxLoad read_heat_load(const Section& l, std::size_t index, const mpm::Problem<2>& problem,
+                                 const std::map<std::string, std::vector<std::int32_t>>& bodies) {
+  l.allow_only({"name", "body", "side", "region", "heat_flux", "film_coefficient", "ambient"});
+  mpm::HeatFluxLoad load;
+  load.name = l.has("name") ? l.name("name") : "load-" + std::to_string(index);
+  select_boundary(l, problem, bodies, load.particles, load.boundary_measure);
+  if (l.has("heat_flux")) {
+    if (l.has("film_coefficient") || l.has("ambient"))
+      l.fail("heat_flux", "expected either heat_flux or film_coefficient with ambient (convection), got both");
+    load.kind = mpm::ThermalWallKind::flux;
+    load.flux = l.quantity("heat_flux", QK::heat_flux);
+    return load;
+  }
+  load.kind = mpm::ThermalWallKind::convection;
+  if (!l.has("film_coefficient")) l.fail("film_coefficient", "missing required key: convection needs film_coefficient");
+  load.film_coefficient = l.quantity("film_coefficient", QK::film_coefficient);
+  if (!(load.film_coefficient >= 0.0)) l.expected("film_coefficient", "a heat transfer coefficient >= 0");
+  if (!l.has("ambient")) l.fail("ambient", "missing required key: convection needs the ambient temperature");
+  load.temperature = l.quantity("ambient", QK::temperature);
+  if (!(load.temperature > 0.0)) l.expected("ambient", "an absolute temperature above 0 K");
   return load;
 }
 

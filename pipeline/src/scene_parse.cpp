@@ -15,6 +15,7 @@
 #include "fragmpm/pipeline/scene_shapes.hpp"
 #include "scene_fracture.hpp"
 #include "scene_grains.hpp"
+#include "scene_thermal.hpp"
 #include "scene_toml.hpp"
 #include "scene_validate.hpp"
 
@@ -97,6 +98,7 @@ mpm::MaterialSpec read_material(const Section& m, std::optional<double> thicknes
                                 double particle_spacing) {
   std::vector<std::string_view> keys = {"name", "model", "E", "nu", "K", "G", "density"};
   keys.insert(keys.end(), damage_keys().begin(), damage_keys().end());
+  keys.insert(keys.end(), thermal_material_keys().begin(), thermal_material_keys().end());
   m.allow_only(keys);
   mpm::MaterialSpec spec;
   spec.name = m.name("name");
@@ -129,7 +131,8 @@ mpm::MaterialSpec read_material(const Section& m, std::optional<double> thicknes
 Shape read_shape(const Section& b) {
   Shape s;
   const std::string kind = b.string("shape");
-  const std::vector<std::string_view> common = {"name", "material", "shape", "velocity", "angular_velocity"};
+  const std::vector<std::string_view> common = {"name", "material", "shape", "velocity", "angular_velocity",
+                                                 "temperature"};
   auto allow = [&](std::initializer_list<std::string_view> extra) {
     std::vector<std::string_view> keys = common;
     keys.insert(keys.end(), extra);
@@ -217,7 +220,7 @@ mpm::VelocityHistory<2> read_history(const Section& h) {
 }
 
 mpm::WallSpec<2> read_wall(const Section& w) {
-  w.allow_only({"name", "point", "normal", "kind", "friction", "velocity"});
+  w.allow_only({"name", "point", "normal", "kind", "friction", "velocity", "thermal"});
   mpm::WallSpec<2> wall;
   wall.name = w.name("name");
   wall.point = w.vector("point", QK::length);
@@ -228,7 +231,8 @@ mpm::WallSpec<2> read_wall(const Section& w) {
   if (kind == "contact") wall.kind = mpm::WallKind::contact;
   else if (kind == "roller") wall.kind = mpm::WallKind::roller;
   else if (kind == "fixed") wall.kind = mpm::WallKind::fixed;
-  else w.expected("kind", "one of \"contact\", \"roller\", \"fixed\"");
+  else if (kind == "thermal") wall.kind = mpm::WallKind::contact;  // a plane for a thermal condition only (parse_scene)
+  else w.expected("kind", "one of \"contact\", \"roller\", \"fixed\", \"thermal\"");
   if (w.has("friction")) {
     if (wall.kind != mpm::WallKind::contact)
       w.fail("friction", "expected no friction for kind = \"" + kind + "\" (friction applies to contact walls only)");
@@ -402,11 +406,29 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   }
 
   NameRegistry wall_names("wall");
+  NameRegistry thermal_plane_names("wall");
+  std::vector<mpm::ThermalWallCondition<2>> wall_thermal;
   for (const Section& w : top.array_of_tables("walls", false)) {
-    problem.walls.push_back(read_wall(w));
-    wall_names.add(w, problem.walls.back().name);
+    const mpm::WallSpec<2> wall = read_wall(w);
+    if (w.optional_string("kind") == std::optional<std::string>("thermal")) {
+      // A plane that only carries a thermal condition: no force, not a platen, not in the series.
+      if (!w.has("thermal"))
+        w.fail("thermal", "missing required key: a wall of kind = \"thermal\" exists only to carry thermal = { ... }");
+      if (w.has("friction")) w.fail("friction", "expected no friction for kind = \"thermal\" (it exerts no force)");
+      if (wall_names.index(wall.name) >= 0) wall_names.add(w, wall.name);  // reports the duplicate
+      thermal_plane_names.add(w, wall.name);
+      wall_thermal.push_back(*read_wall_thermal(w, wall));
+      continue;
+    }
+    if (thermal_plane_names.index(wall.name) >= 0) thermal_plane_names.add(w, wall.name);  // duplicate
+    problem.walls.push_back(wall);
+    wall_names.add(w, wall.name);
+    if (auto c = read_wall_thermal(w, wall)) wall_thermal.push_back(*c);
   }
-  if (auto contact = top.optional_table("contact")) problem.contact = read_contact(*contact);
+  if (auto contact = top.optional_table("contact")) {
+    problem.contact = read_contact(*contact);
+    read_contact_conductance(*contact, problem.thermal);
+  }
 
   if (!top.has("stop"))
     top.fail("stop", "missing required table [stop]: expected at least one of end_time, max_steps, platen_displacement");
@@ -434,7 +456,20 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
       load_bodies[grain_entries[g].name].push_back(grain_first_id[g] + static_cast<std::int32_t>(k));
   const std::vector<Section> load_sections = top.array_of_tables("loads", false);
   for (std::size_t i = 0; i < load_sections.size(); ++i)
-    problem.loads.push_back(read_load(load_sections[i], i, problem, load_bodies));
+    if (is_heat_load(load_sections[i]))
+      problem.thermal.edge_loads.push_back(read_heat_load(load_sections[i], i, problem, load_bodies));
+    else
+      problem.loads.push_back(read_load(load_sections[i], i, problem, load_bodies));
+  {
+    std::vector<std::optional<double>> body_temperature(problem.body_names.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      body_temperature[static_cast<std::size_t>(shape_body_id[i])] = read_body_temperature(bodies[i].section);
+    for (std::size_t g = 0; g < grain_entries.size(); ++g)
+      for (std::size_t k = 0; k < grain_entries[g].body_names.size(); ++k)
+        body_temperature[static_cast<std::size_t>(grain_first_id[g]) + k] =
+            read_body_temperature(grain_entries[g].section);
+    compile_thermal(problem, material_sections, body_temperature, wall_thermal);
+  }
 
   if (time) check_fixed_dt(problem, *time);
   return problem;

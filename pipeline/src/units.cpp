@@ -103,17 +103,20 @@ Dims kind_dims(QuantityKind k) {
     case QuantityKind::expansion: return dims(0, 0, 0, -1);
     case QuantityKind::volume: return dims(3, 0, 0);
     case QuantityKind::inverse_velocity: return dims(-1, 0, 1);
+    case QuantityKind::heat_flux: return dims(0, 1, -3);
+    case QuantityKind::film_coefficient: return dims(0, 1, -3, -1);
   }
   return {};
 }
 
-constexpr std::array<QuantityKind, 17> kAllKinds = {
+constexpr std::array<QuantityKind, 19> kAllKinds = {
     QuantityKind::length,          QuantityKind::time,          QuantityKind::mass,
     QuantityKind::density,         QuantityKind::pressure,      QuantityKind::velocity,
     QuantityKind::acceleration,    QuantityKind::frequency,     QuantityKind::angle,
     QuantityKind::angular_velocity, QuantityKind::temperature,  QuantityKind::energy_per_area,
     QuantityKind::specific_heat,   QuantityKind::conductivity,  QuantityKind::expansion,
-    QuantityKind::volume,          QuantityKind::inverse_velocity};
+    QuantityKind::volume,          QuantityKind::inverse_velocity, QuantityKind::heat_flux,
+    QuantityKind::film_coefficient};
 
 /// "a length" / "kg m^-1 s^-2" — how a found unit is described in an error.
 std::string describe_dims(const Dims& d) {
@@ -156,6 +159,8 @@ std::string_view example(QuantityKind kind) {
     case QuantityKind::expansion: return "8e-6 1/K";
     case QuantityKind::volume: return "1 mm3";
     case QuantityKind::inverse_velocity: return "0.1 s/m";
+    case QuantityKind::heat_flux: return "1 MW/m2";
+    case QuantityKind::film_coefficient: return "10 W/(m2 K)";
   }
   return "";
 }
@@ -327,6 +332,8 @@ std::string_view kind_name(QuantityKind kind) {
     case QuantityKind::expansion: return "thermal expansion coefficient";
     case QuantityKind::volume: return "volume";
     case QuantityKind::inverse_velocity: return "inverse velocity";
+    case QuantityKind::heat_flux: return "heat flux";
+    case QuantityKind::film_coefficient: return "heat transfer coefficient";
   }
   return "quantity";
 }
@@ -350,6 +357,8 @@ std::string_view si_unit(QuantityKind kind) {
     case QuantityKind::expansion: return "1/K";
     case QuantityKind::volume: return "m3";
     case QuantityKind::inverse_velocity: return "s/m";
+    case QuantityKind::heat_flux: return "W/m2";
+    case QuantityKind::film_coefficient: return "W/(m2 K)";
   }
   return "";
 }

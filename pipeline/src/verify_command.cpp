@@ -19,6 +19,9 @@ const std::vector<VerifyCase>& verify_cases() {
       {"notched-bar", "V6 notched bar struck by a disk: damage dissipation vs G_f x crack",
        verify_notched_bar},
       {"kalthoff", "P1 Kalthoff-Winkler plate: crack angle and crack speed", verify_kalthoff},
+      {"conduction", "V4 one-dimensional heat conduction from a temperature step vs erfc", verify_conduction},
+      {"contact-temperature", "V3 pressed aluminium blocks: steady contact-face temperatures, three pressures",
+       verify_contact_temperature},
       {"sliding-block", "V2 sliding block, four friction laws: end-of-slide velocity and friction work vs the rigid block",
        verify_sliding_block},
   };

@@ -1,6 +1,7 @@
 // `fragmpm verify --stability`: stiff and extreme scenes (DESIGN §7). Each runs to its stop
 // condition (always bounded by max_steps, so it cannot hang) and checks invariants: finite fields,
 // energy not created, momentum kept where nothing external acts, no particle lost.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -180,6 +181,33 @@ void triple_junction_checks(const mpm::Solver<2>& solver, const Tracker&, const 
   require(r, "closest particles of different bodies", closest, limit, closest >= limit, "m");
 }
 
+/// Thermal scenes (insulated, no heat sources, initial temperatures within [low, high]): the
+/// temperatures stay within the initial range (maximum principle) and the heat content
+/// Σ m c (θ − θ₀) keeps its initial value 0 to round-off.
+ExtraChecks thermal_checks(double low, double high) {
+  return [low, high](const mpm::Solver<2>& solver, const Tracker&, const std::vector<mpm::Vec<2>>&,
+                     StabilityResult& r) {
+    const auto& P = solver.particles();
+    const auto& materials = solver.problem().thermal.materials;
+    double coldest = high, hottest = low, capacity = 0.0;
+    bool finite = true;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      coldest = std::min(coldest, P.temperature[p]);
+      hottest = std::max(hottest, P.temperature[p]);
+      finite = finite && std::isfinite(P.temperature[p]);
+      capacity += P.mass[p] * materials[static_cast<std::size_t>(P.material[p])].specific_heat;
+    }
+    const double slack = 1e-9 * (high - low);
+    const bool range_ok = finite && coldest >= low - slack && hottest <= high + slack;
+    r.checks.push_back(check_line("temperature range outside initial [K]",
+                                  std::max(low - coldest, hottest - high), slack, range_ok, "K"));
+    const double drift = std::abs(solver.last_row().thermal) / (capacity * (high - low));
+    const bool heat_ok = finite && drift <= 1e-9;
+    r.checks.push_back(check_line("heat content drift / (C ΔT)", drift, 1e-9, heat_ok));
+    r.passed = r.passed && range_ok && heat_ok;
+  };
+}
+
 }  // namespace
 
 std::vector<StabilityResult> run_stability(const VerifyOptions&) {
@@ -224,6 +252,8 @@ std::vector<StabilityResult> run_stability(const VerifyOptions&) {
   results.push_back(run_scene("one-particle-neck", nullptr, true, false, neck_checks));
   results.push_back(run_scene("fines", nullptr, true, false, fines_checks));
   results.push_back(run_scene("triple-junction", nullptr, true, false, triple_junction_checks));
+  results.push_back(run_scene("conductivity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0)));
+  results.push_back(run_scene("heat-capacity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0)));
   return results;
 }
 

@@ -10,6 +10,7 @@
 #include "fragmpm/mpm/damage_law.hpp"
 #include "fragmpm/mpm/friction_law.hpp"
 #include "fragmpm/mpm/particles.hpp"
+#include "fragmpm/mpm/thermal_spec.hpp"
 #include "fragmpm/mpm/velocity_history.hpp"
 
 namespace fragmpm::mpm {
@@ -144,6 +145,7 @@ struct Problem {
   std::vector<WallSpec<D>> walls;
   ContactSpec<D> contact;
   std::vector<TractionLoad<D>> loads;
+  ThermalSpec<D> thermal;  ///< thermal module data; empty = module off
   std::vector<std::string> body_names;  ///< index = body id
   Particles<D> particles;
   std::string scene_path;   ///< where it came from (for messages and /meta)

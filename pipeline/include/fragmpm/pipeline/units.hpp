@@ -33,6 +33,8 @@ enum class QuantityKind {
   expansion,         ///< 1/K
   volume,            ///< m3 (Weibull reference volume)
   inverse_velocity,  ///< s/m (slope of velocity-dependent friction)
+  heat_flux,         ///< W/m2 (thermal boundary flux)
+  film_coefficient,  ///< W/(m2 K) (convection, contact conductance)
 };
 
 /// The quantity string could not be read or has the wrong kind of unit. The message says what was

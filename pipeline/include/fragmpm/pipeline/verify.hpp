@@ -68,6 +68,13 @@ std::vector<VerifyRow> verify_notched_bar(const VerifyOptions& options);
 /// P1: Kalthoff–Winkler crack angle and speed (000 §4.3; 001 §3.2).
 std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options);
 
+/// V4: one-dimensional conduction from a temperature step against the erfc solution.
+std::vector<VerifyRow> verify_conduction(const VerifyOptions& options);
+
+/// V3: steady contact-face temperatures across a pressed interface with pressure-dependent
+/// conductance, κ̄ = 0.1, 1, 10 (000 §4.2, eq. 90); metrics in K (absolute errors).
+std::vector<VerifyRow> verify_contact_temperature(const VerifyOptions& options);
+
 /// Observed order of convergence log(e_a/e_b)/log(h_a/h_b) between consecutive levels of one
 /// variant and metric; NaN where undefined.
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
