@@ -464,10 +464,12 @@ struct Solver<D>::Impl {
   int field_of(std::int64_t p, std::size_t node) const {
     if (by_bodies) return problem.particles.body[p] == 0 ? 0 : 1;
     const Vec<D>& g = particle_gradient[p];
-    if (g.squaredNorm() > 0.0) return particle_field_at_node<D>(g, node_gradient[node]);
-    // Only then the node's position (an index decomposition): most particles have a gradient.
+    const Vec<D>& nodal = node_gradient[node];
+    if (g.squaredNorm() > 0.0) return particle_field_at_node<D>(g, nodal);
+    if (nodal.squaredNorm() == 0.0) return 0;  // a node away from any damage: one field
+    // Only then the node's position (an index decomposition, costly in the scatter loops).
     const Vec<D> offset = problem.particles.x[p] - grid.position(grid.global(static_cast<std::int64_t>(node)));
-    return particle_field_at_node<D>(g, node_gradient[node], offset);
+    return particle_field_at_node<D>(g, nodal, offset);
   }
 
   /// 000 eq. (47)-(49): m_i = Σ S̄ m_p, p_i = Σ S̄ m_p v_p, f_i = Σ S̄ (m_p g + f_p) − Σ V_p σ_p ∇S̄,
