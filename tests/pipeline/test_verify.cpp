@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <limits>
 
 #include "fragmpm/pipeline/verify.hpp"
 
@@ -32,4 +34,28 @@ TEST(VerifyBar, ObservedOrderOfAnExactPowerLaw) {
   EXPECT_NEAR(observed_order(coarse, fine), 2.0, 1e-12);
   fine.error = 0.0;
   EXPECT_TRUE(std::isnan(observed_order(coarse, fine)));
+}
+
+TEST(VerifyReport, TargetsDecidePassOrFail) {
+  const std::string dir = (std::filesystem::temp_directory_path() / "fragmpm_test_verify_report").string();
+  VerifyRow row{.case_name = std::string("case"),
+                .variant = std::string("v"),
+                .cell_size = 1e-3,
+                .metric = std::string("metric"),
+                .value = 1.05,
+                .reference = 1.0,
+                .error = 0.05};
+  EXPECT_FALSE(row.has_target());
+  EXPECT_TRUE(report_case(dir, "case", {row}));  // no target: nothing to miss
+  row.target_low = 0.98;
+  row.target_high = 1.02;
+  EXPECT_TRUE(row.has_target());
+  EXPECT_FALSE(row.passed());
+  EXPECT_FALSE(report_case(dir, "case", {row}));
+  row.value = 1.01;
+  EXPECT_TRUE(report_case(dir, "case", {row}));
+  VerifyRow below = row;
+  below.target_high = std::numeric_limits<double>::infinity();
+  below.value = 0.5;  // only a lower bound: 0.5 < 0.98 misses it
+  EXPECT_FALSE(report_case(dir, "case", {row, below}));
 }
