@@ -2,7 +2,6 @@
 // The elastic block of scenes/verify/sliding-block.toml is compared at the end of the tangential
 // ramp t_f with a rigid block under the same loads: its mean velocity against eq. 50-51 and the
 // accumulated friction work against eq. 52-53 (the rigid-block oracle of sliding_block_oracle.hpp).
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -118,17 +117,10 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
   if (block < 0) throw SceneError(scene, 0, "bodies", "expected a body named \"block\"");
 
   mpm::Solver<2> solver(std::move(problem));
-  double largest_dt = 0.0;
-  const auto start = std::chrono::steady_clock::now();
-  while (solver.time() < b.end_time * (1.0 - 1e-12)) {
-    if (auto failure = solver.step(b.end_time - solver.time()))
-      throw std::runtime_error("sliding-block " + variant.name + ": " + failure->what);
-    largest_dt = std::max(largest_dt, solver.last_row().dt);
-  }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  announce_run("sliding-block " + variant.name + (computed_normal ? "-computed-normal" : "") + " " +
-                   cell_label(cell_size),
-               solver.particles().size(), solver.step_count(), solver.time(), wall);
+  const TimedRun timing = run_until(solver, b.end_time,
+                                    "sliding-block " + variant.name + (computed_normal ? "-computed-normal" : "") +
+                                        " " + cell_label(cell_size),
+                                    0.0, [](const mpm::Solver<2>&) {});
   const mpm::Particles<2>& P = solver.particles();
   double mass = 0.0, momentum = 0.0;
   for (std::size_t p = 0; p < P.size(); ++p)
@@ -143,9 +135,9 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
   r.level = level;
   r.cell_size = cell_size;
   r.particles = static_cast<long long>(P.size());
-  r.dt = largest_dt;
-  r.steps = solver.step_count();
-  r.wall_seconds = wall;
+  r.dt = timing.largest_dt;
+  r.steps = timing.steps;
+  r.wall_seconds = timing.wall_seconds;
   std::vector<VerifyRow> rows(2, r);
   rows[0].metric = "end_velocity_m/s";
   rows[0].value = momentum / mass;
