@@ -591,8 +591,10 @@ struct Solver<D>::Impl {
         pair.gap_closed = (centre1 - centre0).dot(pair.normal) - 0.8 * grid.cell_size < 0.0;
       }
       if (thermal) pair.temperature = thermal->interface_temperature(i);  // 000 eq. 15, Alg. 3 line 12
+      pair.force_a = node_force[0][i];
+      pair.force_b = node_force[1][i];
       const ContactExchange<D> exchange =
-          exchange_momentum<D>(pair, contact.friction, dt, FrictionWorkOrder::first);
+          exchange_momentum<D>(pair, contact.friction, dt, contact.friction_work_order);
       if (!exchange.in_contact) continue;
       ++in_contact;
       if (thermal) {
@@ -620,13 +622,16 @@ struct Solver<D>::Impl {
     for (std::size_t w = 0; w < problem.walls.size(); ++w) {
       const WallSpec<D>& wall = problem.walls[w];
       const Vec<D> wall_velocity = wall.velocity.velocity(time + dt);
-      const Vec<D> wall_point = wall.point + wall.velocity.displacement(time + dt);
+      const Vec<D> wall_shift = wall.velocity.displacement(time + dt);
+      const Vec<D> wall_point = wall.point + wall_shift;
       Vec<D> impulse_sum = Vec<D>::Zero();
       double work = 0.0, friction = 0.0;
       // Serial and in node order: few nodes pass the plane test, and the sums must not depend on
       // the thread count.
       for (std::int64_t i = 0; i < nodes; ++i) {
-        if ((grid.position(grid.global(i)) - wall_point).dot(wall.normal) > tolerance) continue;
+        const Vec<D> node_point = grid.position(grid.global(i));
+        if ((node_point - wall_point).dot(wall.normal) > tolerance) continue;
+        if (!wall.region.contains(node_point, wall_shift, tolerance)) continue;
         for (int f = 0; f < fields; ++f) {
           const double m = node_mass[f][i];
           if (m <= negligible_mass) continue;
@@ -645,9 +650,10 @@ struct Solver<D>::Impl {
               pair.velocity_b = wall_velocity;
               pair.normal = -wall.normal;  // from the material towards the wall
               pair.area = 0.0;
+              pair.force_a = node_force[f][i];
               if (thermal) pair.temperature = thermal->node_temperature(f, static_cast<std::size_t>(i));
               const ContactExchange<D> exchange =
-                  exchange_momentum<D>(pair, wall.friction, dt, FrictionWorkOrder::first);
+                  exchange_momentum<D>(pair, wall.friction, dt, problem.contact.friction_work_order);
               if (!exchange.in_contact) continue;
               change = exchange.momentum_change_a / m;
               friction += exchange.friction_work;

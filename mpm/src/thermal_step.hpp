@@ -273,10 +273,12 @@ class ThermalModule {
     for (const ThermalWallCondition<D>& c : host.problem.thermal.walls) {
       if (c.kind == ThermalWallKind::insulated) continue;
       const ThermalWallCondition<D>& wall = c;
-      const Vec<D> point = wall.point + wall.velocity.displacement(host.time);
+      const Vec<D> shift = wall.velocity.displacement(host.time);
+      const Vec<D> point = wall.point + shift;
       for (std::int64_t i = 0; i < nodes; ++i) {
-        const double distance = (host.grid.position(host.grid.global(i)) - point).dot(wall.normal);
-        if (distance > 2.0 * h) continue;
+        const Vec<D> node_point = host.grid.position(host.grid.global(i));
+        const double distance = (node_point - point).dot(wall.normal);
+        if (distance > 2.0 * h || !wall.region.contains(node_point, shift, tolerance)) continue;
         for (int f = 0; f < fields; ++f) {
           if (!(capacity_[f][i] > negligible_capacity_)) continue;
           if (c.kind == ThermalWallKind::temperature) {

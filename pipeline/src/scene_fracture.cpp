@@ -266,7 +266,7 @@ mpm::FrictionLaw read_friction(const Section& s, std::string_view k) {
 mpm::ContactSpec<2> read_contact(const Section& c) {
   c.allow_only({"partitioning", "friction", "critical_damage", "minimum_damage", "rebuild_fraction", "gap_test",
                 "conductance", "conductance_pressure", "conductance_exponent",
-                "normal", "nodal_gradient"});
+                "normal", "nodal_gradient", "friction_heating"});
   mpm::ContactSpec<2> spec;
   const std::string partitioning = c.optional_string("partitioning").value_or("auto");
   if (partitioning == "auto") spec.partitioning = mpm::Partitioning::automatic;
@@ -278,6 +278,10 @@ mpm::ContactSpec<2> read_contact(const Section& c) {
   else if (nodal == "largest") spec.nodal_gradient = mpm::NodalGradientRule::largest;
   else c.expected("nodal_gradient", "one of \"principal\" (structure tensor), \"largest\" (001 Alg. 1)");
   if (c.has("friction")) spec.friction = read_friction(c, "friction");
+  const std::string heating = c.optional_string("friction_heating").value_or("second-order");
+  if (heating == "second-order") spec.friction_work_order = mpm::FrictionWorkOrder::second;
+  else if (heating == "first-order") spec.friction_work_order = mpm::FrictionWorkOrder::first;
+  else c.expected("friction_heating", "one of \"second-order\" (004 eq. 34-36), \"first-order\" (004 eq. 27)");
   if (auto d = c.optional_number("critical_damage")) {
     if (!(*d > 0.0 && *d <= 1.0)) c.expected("critical_damage", "a damage level 0 < D_cr <= 1");
     spec.critical_damage = *d;

@@ -206,8 +206,10 @@ mpm::VelocityHistory<2> read_history(const Section& h) {
     v.t_end = h.quantity("t_end", QK::time);
     if (!(v.t_end > v.t_start)) h.expected("t_end", "a time t_end > t_start = " + si(v.t_start, "s"));
   } else if (type == "sinusoid") {
-    h.allow_only({"type", "offset", "amplitude", "frequency", "phase"});
+    h.allow_only({"type", "offset", "amplitude", "frequency", "phase", "t_start"});
     v.kind = mpm::HistoryKind::sinusoid;
+    v.t_start = h.optional_quantity("t_start", QK::time).value_or(0.0);
+    if (!(v.t_start >= 0.0)) h.expected("t_start", "a time t_start >= 0 (the sinusoid starts then)");
     v.from = h.optional_vector("offset", QK::velocity).value_or(Vec2::Zero());
     v.amplitude = h.vector("amplitude", QK::velocity);
     v.frequency = h.quantity("frequency", QK::frequency);
@@ -220,7 +222,7 @@ mpm::VelocityHistory<2> read_history(const Section& h) {
 }
 
 mpm::WallSpec<2> read_wall(const Section& w) {
-  w.allow_only({"name", "point", "normal", "kind", "friction", "velocity", "thermal"});
+  w.allow_only({"name", "point", "normal", "kind", "friction", "velocity", "thermal", "region"});
   mpm::WallSpec<2> wall;
   wall.name = w.name("name");
   wall.point = w.vector("point", QK::length);
@@ -239,6 +241,15 @@ mpm::WallSpec<2> read_wall(const Section& w) {
     wall.friction = read_friction(w, "friction");
   }
   if (auto h = w.optional_table("velocity")) wall.velocity = read_history(*h);
+  if (auto r = w.optional_table("region")) {
+    r->allow_only({"min", "max"});
+    wall.region.bounded = true;
+    wall.region.min = r->vector("min", QK::length);
+    wall.region.max = r->vector("max", QK::length);
+    if (!(wall.region.max.array() > wall.region.min.array()).all())
+      r->expected("max", "a corner above and to the right of min = (" + si(wall.region.min.x(), "m") + ", " +
+                             si(wall.region.min.y(), "m") + ")");
+  }
   return wall;
 }
 

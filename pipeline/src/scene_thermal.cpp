@@ -39,6 +39,7 @@ std::optional<mpm::ThermalWallCondition<2>> read_wall_thermal(const Section& w, 
   c.point = wall.point;
   c.normal = wall.normal;
   c.velocity = wall.velocity;
+  c.region = wall.region;
   const int given = int(t->has("temperature")) + int(t->has("flux")) + int(t->has("film_coefficient"));
   if (given != 1)
     t->fail_table("expected exactly one of temperature (fixed temperature), flux (heat flux into the material) or "

@@ -24,6 +24,9 @@ const std::vector<VerifyCase>& verify_cases() {
        verify_contact_temperature},
       {"sliding-block", "V2 sliding block, four friction laws: end-of-slide velocity and friction work vs the rigid block",
        verify_sliding_block},
+      {"oscillating-block", "V7 oscillating block: friction work of one stick-slide-stick cycle over CFL factors, "
+                            "first- and second-order heating",
+       verify_oscillating_block},
   };
   return cases;
 }

@@ -11,9 +11,14 @@
 namespace fragmpm::pipeline {
 
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine) {
-  if (!(coarse.error > 0.0) || !(fine.error > 0.0) || coarse.cell_size == fine.cell_size)
+  if (!(coarse.error > 0.0) || !(fine.error > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  // A study in the time step alone (the oscillating block) keeps the cell and refines Δt.
+  const bool in_time = coarse.cell_size == fine.cell_size;
+  const double coarse_size = in_time ? coarse.dt : coarse.cell_size;
+  const double fine_size = in_time ? fine.dt : fine.cell_size;
+  if (!(coarse_size > 0.0) || !(fine_size > 0.0) || coarse_size == fine_size)
     return std::numeric_limits<double>::quiet_NaN();
-  return std::log(coarse.error / fine.error) / std::log(coarse.cell_size / fine.cell_size);
+  return std::log(coarse.error / fine.error) / std::log(coarse_size / fine_size);
 }
 
 bool report_case(const std::string& directory, const std::string& case_name,

@@ -314,6 +314,14 @@ normal = [-1, 0]
 kind = "roller"
 velocity = { type = "sinusoid", amplitude = ["1 mm/s", "0 m/s"], frequency = "1 kHz", phase = "90 deg" }
 
+[[walls]]
+name = "driver"
+point = ["2 mm", "0 mm"]
+normal = [1, 0]
+kind = "roller"
+region = { min = ["-1 mm", "5 mm"], max = ["2 mm", "15 mm"] }
+velocity = { type = "sinusoid", amplitude = ["2 m/s", "0 m/s"], frequency = "250 Hz", t_start = "1 ms" }
+
 [stop]
 platen_displacement = "0.5 mm"
 platen = "top"
@@ -324,7 +332,7 @@ interval = "0.1 ms"
 fields = ["x", "damage", "stress"]
 )");
   const mpm::Problem<2> p = fp::parse_scene(text, "walls.toml");
-  ASSERT_EQ(p.walls.size(), 3u);
+  ASSERT_EQ(p.walls.size(), 4u);
   const auto& top = p.walls[1];
   EXPECT_EQ(top.kind, mpm::WallKind::fixed);
   EXPECT_EQ(top.velocity.kind, mpm::HistoryKind::ramp);
@@ -338,6 +346,21 @@ fields = ["x", "damage", "stress"]
   EXPECT_DOUBLE_EQ(shaker.velocity.amplitude.x(), 1e-3);
   EXPECT_DOUBLE_EQ(shaker.velocity.frequency, 1000.0);
   EXPECT_DOUBLE_EQ(shaker.velocity.phase, std::numbers::pi / 2);
+  EXPECT_FALSE(shaker.region.bounded);
+  // A delayed sinusoid (004 eq. 44): at rest until t_start, then v_max sin ω(t − t1); after half a
+  // period it has moved 2 v_max/ω, and a bounded wall acts only inside its (moving) box.
+  const auto& driver = p.walls[3];
+  EXPECT_DOUBLE_EQ(driver.velocity.t_start, 1e-3);
+  EXPECT_DOUBLE_EQ(driver.velocity.velocity(0.9e-3).x(), 0.0);
+  EXPECT_DOUBLE_EQ(driver.velocity.displacement(0.9e-3).x(), 0.0);
+  EXPECT_NEAR(driver.velocity.velocity(2e-3).x(), 2.0, 1e-12);
+  const double omega = 2.0 * std::numbers::pi * 250.0;
+  EXPECT_NEAR(driver.velocity.displacement(3e-3).x(), 2.0 * 2.0 / omega, 1e-15);
+  ASSERT_TRUE(driver.region.bounded);
+  const mpm::Vec<2> shift(1e-3, 0.0);
+  EXPECT_TRUE(driver.region.contains(mpm::Vec<2>(2.5e-3, 10e-3), shift, 1e-12));
+  EXPECT_FALSE(driver.region.contains(mpm::Vec<2>(3.5e-3, 10e-3), shift, 1e-12));
+  EXPECT_FALSE(driver.region.contains(mpm::Vec<2>(2.5e-3, 4e-3), shift, 1e-12));
   EXPECT_EQ(p.stop.platen, 1);
   EXPECT_DOUBLE_EQ(p.stop.platen_displacement, 5e-4);
   EXPECT_EQ(p.stop.max_steps, 100000);
@@ -522,6 +545,9 @@ radius = "4 mm")"),
        replace(kGood, "friction = 0.2",
                "velocity = { type = \"ramp\", from = [0, 0], to = [0, 1], t_start = \"2 ms\", t_end = \"1 ms\" }"),
        "ramp", "walls[0].velocity.t_end", "t_end > t_start = 0.002 s"},
+      {"wall_region_inverted",
+       replace(kGood, "friction = 0.2", "region = { min = [\"5 mm\", \"0 mm\"], max = [\"1 mm\", \"9 mm\"] }"),
+       "region", "walls[0].region.max", "a corner above and to the right of min"},
       {"walls_not_an_array", replace(kGood, "[[walls]]", "[walls]"), "[walls]", "walls",
        "expected at least one [[walls]] table, got a table"},
       {"no_stop_condition", replace(kGood, "end_time = \"250 us\"\n", ""), "[stop]", "stop",

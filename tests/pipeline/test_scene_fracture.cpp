@@ -459,6 +459,8 @@ std::vector<BadFractureScene> bad_scenes() {
        "materials[0].fracture_energy", "expected an energy per area"},
       {"zero_fracture_energy", replace(kScene, "\"0.02 N/mm\"", "0"), "fracture_energy", "materials[0].fracture_energy",
        "positive fracture energy"},
+      {"unknown_friction_heating", with_contact("[contact]\nfriction_heating = \"third-order\""), "friction_heating",
+       "contact.friction_heating", "one of \"second-order\""},
       {"unknown_nodal_gradient", with_contact("[contact]\nnodal_gradient = \"steepest\""), "nodal_gradient",
        "contact.nodal_gradient", "one of \"principal\""},
       {"negative_characteristic_length",

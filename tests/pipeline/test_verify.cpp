@@ -34,6 +34,12 @@ TEST(VerifyBar, ObservedOrderOfAnExactPowerLaw) {
   EXPECT_NEAR(observed_order(coarse, fine), 2.0, 1e-12);
   fine.error = 0.0;
   EXPECT_TRUE(std::isnan(observed_order(coarse, fine)));
+  // Same cell, halved time step (a study in Δt): the order is taken over Δt.
+  fine.cell_size = coarse.cell_size;
+  coarse.dt = 1e-6;
+  fine.dt = 0.5e-6;
+  fine.error = 0.04;
+  EXPECT_NEAR(observed_order(coarse, fine), 1.0, 1e-12);
 }
 
 TEST(VerifyReport, TargetsDecidePassOrFail) {

@@ -9,6 +9,7 @@
 
 #include "fragmpm/mpm/types.hpp"
 #include "fragmpm/mpm/velocity_history.hpp"
+#include "fragmpm/mpm/wall_region.hpp"
 
 namespace fragmpm::mpm {
 
@@ -35,6 +36,7 @@ struct ThermalWallCondition {
   Vec<D> point = Vec<D>::Zero();   ///< a point of the plane at t = 0 [m]
   Vec<D> normal = Vec<D>::Zero();  ///< unit, into the material
   VelocityHistory<D> velocity;     ///< the plane moves with its wall
+  WallRegion<D> region;            ///< the part of the plane that acts, as for its wall
   ThermalWallKind kind = ThermalWallKind::insulated;
   double temperature = 0.0;  ///< θ̄ (temperature) or θ_∞ (convection) [K]
   double flux = 0.0;         ///< q̄ into the material [W/m²] (flux)

@@ -1,5 +1,6 @@
 #pragma once
 // Prescribed rigid-wall velocity as a function of time, with its exact time integral (displacement).
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -11,14 +12,15 @@ enum class HistoryKind { constant, ramp, sinusoid };
 
 /// constant: v(t) = from.
 /// ramp: v = from for t <= t_start, linear to `to` over [t_start, t_end], then `to`.
-/// sinusoid: v = from + amplitude * sin(2π frequency t + phase).
+/// sinusoid: v = from for t <= t_start, then from + amplitude * sin(2π frequency (t − t_start) + phase)
+/// (004 eq. 44 with t₁ = t_start).
 template <int D>
 struct VelocityHistory {
   HistoryKind kind = HistoryKind::constant;
   Vec<D> from = Vec<D>::Zero();       ///< [m/s]
   Vec<D> to = Vec<D>::Zero();         ///< [m/s] (ramp)
   Vec<D> amplitude = Vec<D>::Zero();  ///< [m/s] (sinusoid)
-  double t_start = 0.0, t_end = 0.0;  ///< [s] (ramp)
+  double t_start = 0.0, t_end = 0.0;  ///< [s] (ramp; t_start also delays a sinusoid)
   double frequency = 0.0;             ///< [Hz] (sinusoid)
   double phase = 0.0;                 ///< [rad] (sinusoid)
 
@@ -32,7 +34,8 @@ struct VelocityHistory {
         return from + s * (to - from);
       }
       case HistoryKind::sinusoid:
-        return from + amplitude * std::sin(2.0 * std::numbers::pi * frequency * t + phase);
+        if (t <= t_start) return from;
+        return from + amplitude * std::sin(2.0 * std::numbers::pi * frequency * (t - t_start) + phase);
     }
     return from;
   }
@@ -51,8 +54,9 @@ struct VelocityHistory {
       }
       case HistoryKind::sinusoid: {
         const double w = 2.0 * std::numbers::pi * frequency;
-        if (w == 0.0) return (from + amplitude * std::sin(phase)) * t;
-        return from * t + amplitude * ((std::cos(phase) - std::cos(w * t + phase)) / w);
+        const double running = std::max(t - t_start, 0.0);
+        if (w == 0.0) return from * t + amplitude * std::sin(phase) * running;
+        return from * t + amplitude * ((std::cos(phase) - std::cos(w * running + phase)) / w);
       }
     }
     return from * t;

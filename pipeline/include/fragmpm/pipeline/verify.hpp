@@ -75,8 +75,11 @@ std::vector<VerifyRow> verify_conduction(const VerifyOptions& options);
 /// conductance, κ̄ = 0.1, 1, 10 (000 §4.2, eq. 90); metrics in K (absolute errors).
 std::vector<VerifyRow> verify_contact_temperature(const VerifyOptions& options);
 
+/// V7: oscillating-block frictional heating over CFL factors, first- and second-order heating
+/// (004 §3, Fig. 6-7): friction work of one stick–slide–stick interval against its C → 0 limit.
+std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options);
 /// Observed order of convergence log(e_a/e_b)/log(h_a/h_b) between consecutive levels of one
-/// variant and metric; NaN where undefined.
+/// variant and metric, in Δt instead of h when both levels share the cell size; NaN where undefined.
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
 
 /// Writes DIR/CASE.csv (creating DIR) and prints the table with orders and PASS/FAIL against each
