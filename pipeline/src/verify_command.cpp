@@ -24,6 +24,8 @@ const std::vector<VerifyCase>& verify_cases() {
        verify_contact_temperature},
       {"sliding-block", "V2 sliding block, four friction laws: end-of-slide velocity and friction work vs the rigid block",
        verify_sliding_block},
+      {"disk-squish", "P3 disk squish: peak contact temperature and disk speed, isothermal / coupled / softening friction",
+       verify_disk_squish},
   };
   return cases;
 }

@@ -75,6 +75,10 @@ std::vector<VerifyRow> verify_conduction(const VerifyOptions& options);
 /// conductance, κ̄ = 0.1, 1, 10 (000 §4.2, eq. 90); metrics in K (absolute errors).
 std::vector<VerifyRow> verify_contact_temperature(const VerifyOptions& options);
 
+/// P3: disk squish (000 §4.4; 001 Fig. 9) isothermal, coupled and with thermal-softening friction:
+/// peak contact temperature [K], disk speed [m/s] and friction work per variant.
+std::vector<VerifyRow> verify_disk_squish(const VerifyOptions& options);
+
 /// Observed order of convergence log(e_a/e_b)/log(h_a/h_b) between consecutive levels of one
 /// variant and metric; NaN where undefined.
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
