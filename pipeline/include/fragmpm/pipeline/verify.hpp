@@ -98,4 +98,8 @@ struct StabilityResult {
 /// Runs every stability scene; each checks its invariants and never crashes or hangs.
 std::vector<StabilityResult> run_stability(const VerifyOptions& options);
 
+/// One stability scene (scenes/stability/NAME.toml) with its checks; std::invalid_argument for an
+/// unknown name.
+StabilityResult run_stability_scene(const std::string& name);
+
 }  // namespace fragmpm::pipeline
