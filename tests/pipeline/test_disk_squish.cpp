@@ -21,7 +21,7 @@ namespace mpm = fragmpm::mpm;
 namespace {
 
 /// The first `end` seconds of a disk-squish variant with Δt = 1e-7 s (below the CFL limit of
-/// ≈ 1.8e-7 s at 1 mm) instead of the paper's 2e-8 s, so the wedge's impact on the disk fits a unit test.
+/// ≈ 1.8e-7 s at 1 mm) instead of the paper's 2e-8 s, so the start of the squeeze fits a unit test.
 mpm::Solver<2> squish_start(const std::string& variant, const std::string& end,
                             std::map<std::string, std::string> extra = {}) {
   extra["time.dt"] = "1e-7";
@@ -62,7 +62,7 @@ TEST(DiskSquish, ScenesParseWithTheP3Parameters) {
 TEST(DiskSquish, FrictionalHeatEqualsFrictionWork) {
   const mpm::Solver<2> solver = squish_start("coupled", "3e-5", {{"materials[0].expansion", "0.0"}});
   const auto& row = solver.last_row();
-  ASSERT_GT(row.totals.friction_work, 1.0);  // J/m: the wedge has hit the disk and slid
+  ASSERT_GT(row.totals.friction_work, 1.0);  // J/m: the wedge face has slid along the disk
   EXPECT_NEAR(row.thermal, row.totals.friction_work, 1e-9 * row.totals.friction_work);
   const auto& T = solver.particles().temperature;
   EXPECT_GT(*std::max_element(T.begin(), T.end()), 293.15 + 1.0);  // the contact has warmed
