@@ -27,6 +27,8 @@ const std::vector<VerifyCase>& verify_cases() {
       {"oscillating-block", "V7 oscillating block: friction work of one stick-slide-stick cycle over CFL factors, "
                             "first- and second-order heating",
        verify_oscillating_block},
+      {"disk-squish", "P3 disk squish: peak contact temperature and disk speed, isothermal / coupled / softening friction",
+       verify_disk_squish},
   };
   return cases;
 }

@@ -8,6 +8,9 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
+#include <utility>
+#include <variant>
 
 #include "fragmpm/mpm/solver.hpp"
 #include "fragmpm/pipeline/embedded_scenes.hpp"
@@ -33,6 +36,7 @@ struct Tracker {
   double max_stress = 0.0;          ///< largest |σ| component seen [Pa]
   double max_kinetic_change = 0.0;  ///< relative
   double largest_dt = 0.0;          ///< [s]
+  double last_friction_time = 0.0;  ///< time of the last step that added friction work [s]
 };
 
 using SceneSetup = std::function<void(mpm::Problem<2>&)>;
@@ -61,6 +65,7 @@ StabilityResult run_scene(const std::string& name, const SceneSetup& setup, bool
   for (std::size_t p = 0; p < particle_count; ++p)
     momentum_scale += solver.particles().mass[p] * solver.particles().v[p].norm();
   Tracker t;
+  double friction_before = solver.last_row().totals.friction_work;
   std::optional<mpm::NumericalFailure> failure;
   auto platen_travel = [&] {
     return stop.platen >= 0 ? solver.wall_displacement(std::size_t(stop.platen)).norm() : 0.0;
@@ -73,6 +78,8 @@ StabilityResult run_scene(const std::string& name, const SceneSetup& setup, bool
     const auto& row = solver.last_row();
     t.max_energy_created = std::max(t.max_energy_created, row.balance_error);
     t.largest_dt = std::max(t.largest_dt, row.dt);
+    if (row.totals.friction_work > friction_before) t.last_friction_time = row.time;
+    friction_before = row.totals.friction_work;
     t.max_input = std::max(t.max_input, row.totals.initial_energy + std::abs(row.totals.wall_work) +
                                             std::abs(row.totals.gravity_work));
     t.max_momentum_drift = std::max(t.max_momentum_drift, (row.momentum - momentum0).norm());
@@ -208,13 +215,41 @@ ExtraChecks thermal_checks(double low, double high) {
   };
 }
 
-}  // namespace
+/// Interface driven past θ_dam (scenes/stability/hot-interface.toml): temperatures finite, the
+/// hottest particle past θ_dam, friction work stopped before half the run (μ = 0 at θ ≥ θ_dam, 000
+/// eq. 15), and the heat content equal to friction work plus the face heat flux input Σ q a_p t
+/// (frictional heat = friction work, 000 eq. 14, 82; no conduction, no expansion).
+void hot_interface_checks(const mpm::Solver<2>& solver, const Tracker& t, const std::vector<mpm::Vec<2>>&,
+                          StabilityResult& r) {
+  const auto& P = solver.particles();
+  const auto* law = std::get_if<mpm::ThermalSofteningFriction>(&solver.problem().contact.friction);
+  const double theta_dam = law ? law->damage_temperature : std::numeric_limits<double>::quiet_NaN();
+  double hottest = -std::numeric_limits<double>::infinity();
+  bool finite = true;
+  for (double theta : P.temperature) {
+    finite = finite && std::isfinite(theta);
+    hottest = std::max(hottest, theta);
+  }
+  require(r, "all temperatures finite", finite ? 1.0 : 0.0, 1.0, finite);
+  require(r, "hottest particle temperature (above θ_dam)", hottest, theta_dam, finite && hottest > theta_dam, "K");
+  const double half = 0.5 * solver.time();
+  require(r, "last step with friction work (before half)", t.last_friction_time, half,
+          t.last_friction_time > 0.0 && t.last_friction_time < half, "s");
+  double flux_power = 0.0;  // [W/m]
+  for (const auto& load : solver.problem().thermal.edge_loads)
+    for (double a : load.boundary_measure) flux_power += load.flux * a;
+  const auto& row = solver.last_row();
+  const double expected = row.totals.friction_work + flux_power * solver.time();
+  const double mismatch = std::abs(row.thermal - expected) / expected;
+  require(r, "heat content vs friction work + flux input", mismatch, 1e-9, mismatch <= 1e-9);
+}
 
-std::vector<StabilityResult> run_stability(const VerifyOptions&) {
-  std::vector<StabilityResult> results;
-  results.push_back(run_scene("stiffness-contrast", nullptr, false, false, nullptr));
-  results.push_back(run_scene("nearly-incompressible", nullptr, false, false, nullptr));
-  results.push_back(run_scene(
+/// The stability scenes in run order, each with its setup and checks.
+std::vector<std::pair<std::string, std::function<StabilityResult()>>> stability_scenes() {
+  std::vector<std::pair<std::string, std::function<StabilityResult()>>> results;
+  results.emplace_back("stiffness-contrast", [] { return run_scene("stiffness-contrast", nullptr, false, false, nullptr); });
+  results.emplace_back("nearly-incompressible", [] { return run_scene("nearly-incompressible", nullptr, false, false, nullptr); });
+  results.emplace_back("spinning-disk", [] { return run_scene(
       "spinning-disk", nullptr, true, true,
       [](const mpm::Solver<2>& solver, const Tracker& t, const std::vector<mpm::Vec<2>>&, StabilityResult& r) {
         // Two sources of stress in a free rigid rotation: the centrifugal one of a spinning elastic
@@ -235,9 +270,9 @@ std::vector<StabilityResult> run_stability(const VerifyOptions&) {
         const bool energy_ok = t.max_kinetic_change <= 0.05;
         r.checks.push_back(check_line("energy lost in a quarter turn / E(0)", t.max_kinetic_change, 0.05, energy_ok));
         r.passed = r.passed && stress_ok && energy_ok;
-      }));
-  results.push_back(run_scene("impact-500", nullptr, false, false, nullptr));
-  results.push_back(run_scene(
+      }); });
+  results.emplace_back("impact-500", [] { return run_scene("impact-500", nullptr, false, false, nullptr); });
+  results.emplace_back("dt-limit", [] { return run_scene(
       "dt-limit",
       [](mpm::Problem<2>& problem) {
         for (std::size_t p = 0; p < problem.particles.size(); ++p) {
@@ -247,14 +282,29 @@ std::vector<StabilityResult> run_stability(const VerifyOptions&) {
         }
         problem.time.fixed_dt = 0.99 * mpm::stable_time_step<2>(problem, problem.particles, 1.0);
       },
-      true, false, nullptr, 0.05));
-  results.push_back(run_scene("shatter-500", nullptr, false, false, shatter_checks));
-  results.push_back(run_scene("one-particle-neck", nullptr, true, false, neck_checks));
-  results.push_back(run_scene("fines", nullptr, true, false, fines_checks));
-  results.push_back(run_scene("triple-junction", nullptr, true, false, triple_junction_checks));
-  results.push_back(run_scene("conductivity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0)));
-  results.push_back(run_scene("heat-capacity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0)));
+      true, false, nullptr, 0.05); });
+  results.emplace_back("shatter-500", [] { return run_scene("shatter-500", nullptr, false, false, shatter_checks); });
+  results.emplace_back("one-particle-neck", [] { return run_scene("one-particle-neck", nullptr, true, false, neck_checks); });
+  results.emplace_back("fines", [] { return run_scene("fines", nullptr, true, false, fines_checks); });
+  results.emplace_back("triple-junction", [] { return run_scene("triple-junction", nullptr, true, false, triple_junction_checks); });
+  results.emplace_back("conductivity-contrast", [] { return run_scene("conductivity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0)); });
+  results.emplace_back("heat-capacity-contrast", [] { return run_scene("heat-capacity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0)); });
+  results.emplace_back("hot-interface", [] { return run_scene("hot-interface", nullptr, false, false, hot_interface_checks); });
   return results;
+}
+
+}  // namespace
+
+std::vector<StabilityResult> run_stability(const VerifyOptions&) {
+  std::vector<StabilityResult> results;
+  for (const auto& [name, run] : stability_scenes()) results.push_back(run());
+  return results;
+}
+
+StabilityResult run_stability_scene(const std::string& name) {
+  for (const auto& [scene, run] : stability_scenes())
+    if (scene == name) return run();
+  throw std::invalid_argument("no stability scene '" + name + "'");
 }
 
 }  // namespace fragmpm::pipeline

@@ -78,6 +78,10 @@ std::vector<VerifyRow> verify_contact_temperature(const VerifyOptions& options);
 /// V7: oscillating-block frictional heating over CFL factors, first- and second-order heating
 /// (004 §3, Fig. 6-7): friction work of one stick–slide–stick interval against its C → 0 limit.
 std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options);
+/// P3: disk squish (000 §4.4; 001 Fig. 9) isothermal, coupled and with thermal-softening friction:
+/// peak contact temperature [K], disk speed [m/s] and friction work per variant.
+std::vector<VerifyRow> verify_disk_squish(const VerifyOptions& options);
+
 /// Observed order of convergence log(e_a/e_b)/log(h_a/h_b) between consecutive levels of one
 /// variant and metric, in Δt instead of h when both levels share the cell size; NaN where undefined.
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
@@ -96,5 +100,9 @@ struct StabilityResult {
 
 /// Runs every stability scene; each checks its invariants and never crashes or hangs.
 std::vector<StabilityResult> run_stability(const VerifyOptions& options);
+
+/// One stability scene (scenes/stability/NAME.toml) with its checks; std::invalid_argument for an
+/// unknown name.
+StabilityResult run_stability_scene(const std::string& name);
 
 }  // namespace fragmpm::pipeline
