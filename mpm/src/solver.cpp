@@ -176,11 +176,6 @@ struct Solver<D>::Impl {
   bool needs_contact_area = false;  ///< the contact friction law has a strength term (004 eq. 24)
   std::array<std::vector<Vec<D>>, 2> node_position;       ///< Σ S̄ m_p x_p per field (004 eq. 8)
   std::vector<double> node_dhat_max;                      ///< largest d̂ mapping to the node
-  /// Σ S̄ d̂_p x_p and Σ S̄ d̂_p over the particles mapping to a node (001 Alg. 2 pre-pass): their
-  /// ratio is the centre of the damaged or surface-flagged band at the node, the surface whose side
-  /// decides the field of a particle whose own gradient does not (particle_field_at_node).
-  std::vector<Vec<D>> node_band_moment;
-  std::vector<double> node_band_weight;
   std::vector<std::int64_t> two_field_nodes;
   std::vector<double> node_friction_work;
   std::vector<double> node_normal_impulse, node_contact_area;  ///< per two-field node, for contact heat
@@ -352,10 +347,6 @@ struct Solver<D>::Impl {
       if (!by_bodies && problem.contact.nodal_gradient == NodalGradientRule::principal)
         node_gradient_tensor.assign(nodes, Mat<D>::Zero());
       node_dhat_max.assign(nodes, 0.0);
-      if (!by_bodies) {
-        node_band_moment.assign(nodes, Vec<D>::Zero());
-        node_band_weight.assign(nodes, 0.0);
-      }
       for (int f = 0; f < 2; ++f) {
         node_mass_gradient[f].assign(nodes, Vec<D>::Zero());
         node_dhat[f].assign(nodes, 0.0);
@@ -444,19 +435,8 @@ struct Solver<D>::Impl {
   /// particle gradient of largest norm (total-order tie-break: independent of the scatter order).
   template <ShapeFunctionKind Kind>
   void nodal_damage_gradient() {
-    const auto& x = problem.particles.x;
-    auto add_band = [&](std::int64_t p, const Stencil<D>& s) {
-      const double dhat = particle_dhat[p];
-      if (dhat <= 0.0) return;
-      for (int e = 0; e < s.count; ++e) {
-        const std::size_t i = static_cast<std::size_t>(s.node[e]);
-        node_band_weight[i] += s.weight[e] * dhat;
-        node_band_moment[i] += (s.weight[e] * dhat) * x[p];
-      }
-    };
     if (problem.contact.nodal_gradient == NodalGradientRule::largest) {
       for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
-        add_band(p, s);
         const Vec<D>& g = particle_gradient[p];
         if (g.squaredNorm() <= 0.0) return;
         for (int e = 0; e < s.count; ++e)
@@ -465,7 +445,6 @@ struct Solver<D>::Impl {
       return;
     }
     for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
-      add_band(p, s);
       const Vec<D>& g = particle_gradient[p];
       if (g.squaredNorm() <= 0.0) return;
       for (int e = 0; e < s.count; ++e)
@@ -479,23 +458,18 @@ struct Solver<D>::Impl {
         node_gradient[i] = principal_gradient<D>(node_gradient_tensor[i]);
   }
 
-  /// 001 Alg. 2: field 0 when ∇D̄_p · ∇D̄_i ≥ 0, else field 1. A particle whose gradient says
-  /// nothing about this node's surface (∇D̄_p = 0 beyond the reach of any damage, or ∇D̄_p almost
-  /// in the surface plane at a junction of surfaces) joins the side of the band centre it lies on
-  /// (particle_field_at_node). With partitioning by bodies the field is the body id (two bodies,
-  /// 004 §2.2 multimaterial contact).
+  /// 001 Alg. 2: field 0 when ∇D̄_p · ∇D̄_i ≥ 0, else field 1; a particle beyond the reach of any
+  /// damage (∇D̄_p = 0) joins the side of the node it lies on instead of always field 0. With
+  /// partitioning by bodies the field is the body id (two bodies, 004 §2.2 multimaterial contact).
   int field_of(std::int64_t p, std::size_t node) const {
     if (by_bodies) return problem.particles.body[p] == 0 ? 0 : 1;
     const Vec<D>& g = particle_gradient[p];
     const Vec<D>& nodal = node_gradient[node];
+    if (g.squaredNorm() > 0.0) return particle_field_at_node<D>(g, nodal);
     if (nodal.squaredNorm() == 0.0) return 0;  // a node away from any damage: one field
-    if (gradient_decides_field<D>(g, nodal)) return particle_field_at_node<D>(g, nodal);
-    // Only then the band centre (or, without one, the node's position: an index decomposition,
-    // costly in the scatter loops).
-    const Vec<D> reference =
-        node_band_weight[node] > 0.0 ? Vec<D>(node_band_moment[node] / node_band_weight[node])
-                                     : grid.position(grid.global(static_cast<std::int64_t>(node)));
-    return particle_field_at_node<D>(g, nodal, Vec<D>(problem.particles.x[p] - reference));
+    // Only then the node's position (an index decomposition, costly in the scatter loops).
+    const Vec<D> offset = problem.particles.x[p] - grid.position(grid.global(static_cast<std::int64_t>(node)));
+    return particle_field_at_node<D>(g, nodal, offset);
   }
 
   /// 000 eq. (47)-(49): m_i = Σ S̄ m_p, p_i = Σ S̄ m_p v_p, f_i = Σ S̄ (m_p g + f_p) − Σ V_p σ_p ∇S̄,

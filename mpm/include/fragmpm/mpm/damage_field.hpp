@@ -209,39 +209,16 @@ inline std::uint8_t particle_field_at_node(const Vec<D>& particle_gradient,
   return particle_gradient.dot(nodal_gradient) >= 0.0 ? 0 : 1;
 }
 
-/// |cos| between ∇D̄_p and ∇D̄_i below which the particle's gradient does not decide its field.
-/// Where surfaces meet (a free face ending at a contact surface: the billet corner under the
-/// overhanging platen in BENCHMARKS P2), the DFG of the junction particle points along the free
-/// face's normal, within a few degrees of the contact plane (cos = −0.04 … 0.08 there), and the
-/// sign of ∇D̄_p · ∇D̄_i flips with round-off-sized changes of the nodal direction: the billet's
-/// corner particle joined the platen's field at the interface nodes and the P2 velocities differed
-/// by 35 % of the peak. A gradient within arcsin(0.2) ≈ 12° of the surface plane is taken as
-/// carrying no side information; the P2 error is the same for thresholds 0.1 to 0.3.
-inline constexpr double ambiguous_gradient_cosine = 0.2;
-
-/// Whether ∇D̄_p decides the field of particle p at node i (Alg. 2's sign test): it is non-zero
-/// and further than ambiguous_gradient_cosine from perpendicular to ∇D̄_i.
-template <int D>
-inline bool gradient_decides_field(const Vec<D>& particle_gradient, const Vec<D>& nodal_gradient) {
-  const double along = particle_gradient.dot(nodal_gradient);
-  return along * along > ambiguous_gradient_cosine * ambiguous_gradient_cosine *
-                             particle_gradient.squaredNorm() * nodal_gradient.squaredNorm();
-}
-
-/// Alg. 2 with a position rule for particles whose gradient does not decide (gradient_decides_field
-/// false): out of reach of any damage (∇D̄_p = 0, which plain Alg. 2 puts in field 0 whichever side
-/// of the crack they are on; with r_p = cell diagonal this happens to the far particles of a CPDI or
-/// linear stencil at nodes on a crack), or with a gradient almost in the surface plane. Such a
-/// particle joins the side of the surface it lies on: the particles whose gradients agree with ∇D̄_i
-/// lie where (x_p − x_s)·∇D̄_i < 0 for a point x_s of the surface (gradients point from intact
-/// material into the damage), so field 0 when (x_p − x_s)·∇D̄_i ≤ 0, else 1. offset = x_p − x_s
-/// [m]; the solver takes x_s = the d̂-weighted centre Σ S̄ d̂_p x_p / Σ S̄ d̂_p of the band at the
-/// node (exact for a flat band whatever the node's distance to it), the node position x_i when no
-/// damaged particle maps there.
+/// Alg. 2 with a position fallback for particles out of reach of any damage (∇D̄_p = 0, which
+/// plain Alg. 2 puts in field 0 whichever side of the crack they are on; with r_p = cell diagonal
+/// this happens to the far particles of a CPDI or linear stencil at nodes on a crack). Such a
+/// particle joins the side it lies on: the particles whose gradients agree with ∇D̄_i lie where
+/// (x_p − x_i)·∇D̄_i < 0 (gradients point from intact material into the damage), so field 0 when
+/// (x_p − x_i)·∇D̄_i ≤ 0, else 1. offset = x_p − x_i [m].
 template <int D>
 inline std::uint8_t particle_field_at_node(const Vec<D>& particle_gradient,
                                            const Vec<D>& nodal_gradient, const Vec<D>& offset) {
-  if (gradient_decides_field<D>(particle_gradient, nodal_gradient))
+  if (particle_gradient.squaredNorm() > 0.0)
     return particle_field_at_node<D>(particle_gradient, nodal_gradient);
   return offset.dot(nodal_gradient) <= 0.0 ? 0 : 1;
 }
@@ -275,9 +252,8 @@ void particle_fields(const std::vector<Vec<D>>& particle_gradient,
                      const std::vector<std::int64_t>& nodes,
                      const std::vector<Vec<D>>& nodal_gradient, std::vector<std::uint8_t>& field);
 
-/// The same with the position rule of particle_field_at_node for particles whose gradient does not
-/// decide, with the node position as the surface point x_s; x: N particle positions [m], grid: maps
-/// the linear node indices in `nodes` to positions.
+/// The same with the position fallback for ∇D̄_p = 0 (see particle_field_at_node); x: N particle
+/// positions [m], grid: maps the linear node indices in `nodes` to positions.
 template <int D>
 void particle_fields(const std::vector<Vec<D>>& particle_gradient,
                      const std::vector<std::size_t>& node_start,
