@@ -450,7 +450,12 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   for (const BodyEntry& b : bodies) check_body_in_domain(b, problem.grid);
   std::vector<BodySample> samples;
   for (const BodyEntry& b : bodies) samples.push_back(b.sample);
-  SampleResult sampled = sample_bodies(samples, problem.materials, problem.grid, per_cell);
+  // Roller walls are bilateral (the solver removes the normal velocity both ways): a body face on
+  // one is a symmetry plane of the model, not a free surface.
+  std::vector<MirrorPlane> mirrors;
+  for (const mpm::WallSpec<2>& w : problem.walls)
+    if (w.kind == mpm::WallKind::roller) mirrors.push_back({w.point, w.normal.normalized()});
+  SampleResult sampled = sample_bodies(samples, problem.materials, problem.grid, per_cell, mirrors);
   check_sampling(bodies, sampled, problem.grid.cell_size / per_cell);
   problem.particles = std::move(sampled.particles);
   for (auto& id : problem.particles.body) id = shape_body_id[static_cast<std::size_t>(id)];

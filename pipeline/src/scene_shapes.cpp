@@ -106,7 +106,7 @@ std::pair<int, int> polygon_self_intersection(const std::vector<Vec2>& v) {
 
 SampleResult sample_bodies(const std::vector<BodySample>& bodies,
                            const std::vector<mpm::MaterialSpec>& materials, const mpm::GridSpec<2>& grid,
-                           int particles_per_cell) {
+                           int particles_per_cell, const std::vector<MirrorPlane>& mirrors) {
   const double s = grid.cell_size / particles_per_cell;
   // Lattice points x = min + (i + 1/2) s inside the domain: i + 1/2 < L/s.
   std::int64_t n_lattice[2];
@@ -184,6 +184,21 @@ SampleResult sample_bodies(const std::vector<BodySample>& bodies,
       for (int di = -1; di <= 1 && !surface; ++di) {
         if (di == 0 && dj == 0) continue;
         const std::int64_t i = sites[k].i + di, j = sites[k].j + dj;
+        // Beyond a symmetry plane the neighbour is the mirror image of a point of the model:
+        // present when that image lies in this body. The plane is then no surface, as in the full
+        // (unmirrored) body, so the damage field does not partition the body along it (001 §2.4
+        // flags the surfaces that may open or touch; a face on a bilateral roller can do neither).
+        const Vec2 q = point(i, j);
+        bool mirrored = false;
+        for (const MirrorPlane& m : mirrors) {
+          const double depth = (q - m.point).dot(m.normal);
+          if (depth >= 0.0) continue;
+          mirrored = true;
+          const Vec2 image = q - 2.0 * depth * m.normal;
+          if (!contains(body.shape, image) || owner(image, static_cast<std::size_t>(b)) >= 0) surface = 1;
+          break;
+        }
+        if (mirrored) continue;
         if (i < 0 || j < 0 || i >= n_lattice[0] || j >= n_lattice[1]) {
           surface = 1;
           continue;

@@ -157,6 +157,37 @@ TEST(Scene, SurfaceFlagsOnlyOnTheBoundaryOfABox) {
   EXPECT_EQ(surface, 128u - 14u * 6u);
 }
 
+TEST(Scene, FacesOnRollerWallsAreSymmetryPlanesNotSurfaces) {
+  // The block [2, 6] x [2, 4] mm with a roller wall on its left face x = 2 mm (normal +x) and a
+  // fixed wall on its bottom face y = 2 mm: the left column lies on a mirror plane (the body
+  // continues across it) and loses its flags, except where another face also bounds it; the
+  // bottom row on the no-slip wall keeps them.
+  const std::string text = replace(kGood, "[[walls]]", R"([[walls]]
+name = "mirror"
+point = ["2 mm", "0 mm"]
+normal = [1, 0]
+kind = "roller"
+
+[[walls]]
+name = "base"
+point = ["0 mm", "2 mm"]
+normal = [0, 1]
+kind = "fixed"
+
+[[walls]])");
+  const mpm::Problem<2> p = fp::parse_scene(text, "mirror.toml");
+  const double s = 2.5e-4;
+  std::size_t surface = 0;
+  for (std::size_t k = 0; k < p.particles.size(); ++k) {
+    const Eigen::Vector2d x = p.particles.x[k];
+    const bool ring = x.x() > 6e-3 - s || x.y() < 2e-3 + s || x.y() > 4e-3 - s;
+    EXPECT_EQ(p.particles.surface[k], ring ? 1 : 0) << "particle at " << x.transpose();
+    surface += p.particles.surface[k];
+  }
+  // 16 x 8 lattice: the top and bottom rows (2 x 16) and the right column's 6 inner particles.
+  EXPECT_EQ(surface, 2u * 16u + 6u);
+}
+
 TEST(Scene, DiskAreaMassAndSurface) {
   const std::string text = replace(kGood, R"(shape = "box"
 min = ["2 mm", "2 mm"]

@@ -49,13 +49,22 @@ struct SampleResult {
   std::vector<std::vector<std::size_t>> overlap;
 };
 
+/// A symmetry plane of the scene (a roller wall): the material continues as its mirror image
+/// beyond it. point: a point on the plane [m]; normal: unit normal towards the material side.
+struct MirrorPlane {
+  Vec2 point = Vec2::Zero();
+  Vec2 normal = Vec2::UnitX();
+};
+
 /// Fills bodies with particles, n = particles_per_cell per direction, spacing s = h/n on the lattice
 /// x = grid.min + (i + 1/2) s. A lattice point belongs to the first body (in order) whose shape
 /// contains it. Each particle: F = I, CPDI domain diag(s, s), volume0 = s² (per unit thickness),
 /// mass = ρ volume0, v = v0 + ω × (x − centroid), strength = +inf, surface = 1 when any of its eight
-/// lattice neighbours belongs to another body or to none.
+/// lattice neighbours belongs to another body or to none. A neighbour beyond a mirror plane stands
+/// for its mirror image: it counts as present when the image point lies in the same body, so a
+/// body's face on a symmetry plane is not a surface (the full body continues across it).
 SampleResult sample_bodies(const std::vector<BodySample>& bodies,
                            const std::vector<mpm::MaterialSpec>& materials, const mpm::GridSpec<2>& grid,
-                           int particles_per_cell);
+                           int particles_per_cell, const std::vector<MirrorPlane>& mirrors = {});
 
 }  // namespace fragmpm::pipeline
