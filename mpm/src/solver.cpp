@@ -383,6 +383,12 @@ struct Solver<D>::Impl {
   /// that scatter into the stencil's nodes never race and sum in a thread-independent order.
   template <ShapeFunctionKind Kind, class Body>
   void for_each_particle_scatter(Body&& body) {
+    for_each_particle_scatter<Kind>([](std::int64_t) { return true; }, std::forward<Body>(body));
+  }
+
+  /// The same over the particles for which takes_part(p) holds; the others cost no stencil.
+  template <ShapeFunctionKind Kind, class Filter, class Body>
+  void for_each_particle_scatter(Filter&& takes_part, Body&& body) {
     const std::int64_t strips = static_cast<std::int64_t>(strip_start.size()) - 1;
     for (std::int64_t parity = 0; parity < 2; ++parity) {
 #pragma omp parallel
@@ -392,6 +398,7 @@ struct Solver<D>::Impl {
         for (std::int64_t strip = parity; strip < strips; strip += 2) {
           for (std::int64_t k = strip_start[strip]; k < strip_start[strip + 1]; ++k) {
             const std::int64_t p = strip_order[k];
+            if (!takes_part(p)) continue;
             fill_stencil<Kind>(problem.particles, p, grid, s);
             body(p, s);
           }
@@ -435,18 +442,19 @@ struct Solver<D>::Impl {
   /// particle gradient of largest norm (total-order tie-break: independent of the scatter order).
   template <ShapeFunctionKind Kind>
   void nodal_damage_gradient() {
+    // Only particles within reach of damage or a surface have a gradient; the others (most of a
+    // body's interior) need no stencil here.
+    const auto has_gradient = [&](std::int64_t p) { return particle_gradient[p].squaredNorm() > 0.0; };
     if (problem.contact.nodal_gradient == NodalGradientRule::largest) {
-      for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
+      for_each_particle_scatter<Kind>(has_gradient, [&](std::int64_t p, const Stencil<D>& s) {
         const Vec<D>& g = particle_gradient[p];
-        if (g.squaredNorm() <= 0.0) return;
         for (int e = 0; e < s.count; ++e)
           fold_nodal_gradient<D>(g, node_gradient[static_cast<std::size_t>(s.node[e])]);
       });
       return;
     }
-    for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
+    for_each_particle_scatter<Kind>(has_gradient, [&](std::int64_t p, const Stencil<D>& s) {
       const Vec<D>& g = particle_gradient[p];
-      if (g.squaredNorm() <= 0.0) return;
       for (int e = 0; e < s.count; ++e)
         if (s.weight[e] > 0.0)
           accumulate_gradient_tensor<D>(g, node_gradient_tensor[static_cast<std::size_t>(s.node[e])]);
@@ -489,11 +497,17 @@ struct Solver<D>::Impl {
       for (int e = 0; e < s.count; ++e) {
         const std::size_t i = static_cast<std::size_t>(s.node[e]);
         int f = 0;
-        if constexpr (Partitioned) f = field_of(p, i);
+        // A node without a nodal damage gradient keeps every particle in field 0 (field_of), so it
+        // never has two fields and needs none of the contact sums below.
+        bool contact_node = false;
+        if constexpr (Partitioned) {
+          contact_node = by_bodies || node_gradient[i].squaredNorm() > 0.0;
+          if (contact_node) f = field_of(p, i);
+        }
         node_mass[f][i] += s.weight[e] * P.mass[p];
         node_momentum[f][i] += s.weight[e] * momentum;
         node_force[f][i] += s.weight[e] * external - volume_stress * s.gradient[e];
-        if constexpr (Partitioned) {
+        if (contact_node) {
           node_mass_gradient[f][i] += P.mass[p] * s.gradient[e];
           const double dhat = by_bodies ? 0.0 : particle_dhat[p];
           node_dhat[f][i] += s.weight[e] * P.mass[p] * dhat;
