@@ -176,6 +176,12 @@ struct Solver<D>::Impl {
   bool needs_contact_area = false;  ///< the contact friction law has a strength term (004 eq. 24)
   std::array<std::vector<Vec<D>>, 2> node_position;       ///< Σ S̄ m_p x_p per field (004 eq. 8)
   std::vector<double> node_dhat_max;                      ///< largest d̂ mapping to the node
+  /// Pre-pass of 001 Alg. 2 (nodal_damage_gradient), for the junction rule of field_of: the
+  /// largest damage d (not d̂: surface flags excluded) mapping to the node, and Σ S̄ d̂_p x_p,
+  /// Σ S̄ d̂_p, whose ratio is the centre of the flagged band at the node.
+  std::vector<double> node_damage_max;
+  std::vector<Vec<D>> node_band_moment;
+  std::vector<double> node_band_weight;
   std::vector<std::int64_t> two_field_nodes;
   std::vector<double> node_friction_work;
   std::vector<double> node_normal_impulse, node_contact_area;  ///< per two-field node, for contact heat
@@ -347,6 +353,11 @@ struct Solver<D>::Impl {
       if (!by_bodies && problem.contact.nodal_gradient == NodalGradientRule::principal)
         node_gradient_tensor.assign(nodes, Mat<D>::Zero());
       node_dhat_max.assign(nodes, 0.0);
+      if (!by_bodies) {
+        node_damage_max.assign(nodes, 0.0);
+        node_band_moment.assign(nodes, Vec<D>::Zero());
+        node_band_weight.assign(nodes, 0.0);
+      }
       for (int f = 0; f < 2; ++f) {
         node_mass_gradient[f].assign(nodes, Vec<D>::Zero());
         node_dhat[f].assign(nodes, 0.0);
@@ -435,8 +446,20 @@ struct Solver<D>::Impl {
   /// particle gradient of largest norm (total-order tie-break: independent of the scatter order).
   template <ShapeFunctionKind Kind>
   void nodal_damage_gradient() {
+    const auto& P = problem.particles;
+    auto add_band = [&](std::int64_t p, const Stencil<D>& s) {
+      const double dhat = particle_dhat[p];
+      if (dhat <= 0.0) return;
+      for (int e = 0; e < s.count; ++e) {
+        const std::size_t i = static_cast<std::size_t>(s.node[e]);
+        node_damage_max[i] = std::max(node_damage_max[i], P.damage[p]);
+        node_band_weight[i] += s.weight[e] * dhat;
+        node_band_moment[i] += (s.weight[e] * dhat) * P.x[p];
+      }
+    };
     if (problem.contact.nodal_gradient == NodalGradientRule::largest) {
       for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
+        add_band(p, s);
         const Vec<D>& g = particle_gradient[p];
         if (g.squaredNorm() <= 0.0) return;
         for (int e = 0; e < s.count; ++e)
@@ -445,6 +468,7 @@ struct Solver<D>::Impl {
       return;
     }
     for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
+      add_band(p, s);
       const Vec<D>& g = particle_gradient[p];
       if (g.squaredNorm() <= 0.0) return;
       for (int e = 0; e < s.count; ++e)
@@ -458,6 +482,28 @@ struct Solver<D>::Impl {
         node_gradient[i] = principal_gradient<D>(node_gradient_tensor[i]);
   }
 
+  /// Whether Alg. 2's sign test is meaningless for surface particle p at node i because p sits
+  /// where pre-existing surfaces meet. 001 §2.4 makes touching bodies separable by flagging their
+  /// boundary particles (d̂ = s = 1), so the kernel field D̄ is a band along every flagged face and
+  /// ∇D̄_p points from p's side into the band (001 eq. 17-19). At a node of a contact surface whose
+  /// band ends at a free face of one body (the billet corner under the overhanging platen, P2), the
+  /// corner particle's ∇D̄_p points along the free face's normal — within a few degrees of the
+  /// contact plane — and ∇D̄_p · ∇D̄_i (001 Alg. 2) is the noise of two almost perpendicular
+  /// vectors: the corner joins the other body's field and is dragged with it. Such a particle is
+  /// instead put on the side of the band it lies on (particle_field_at_node with offset from the
+  /// band centre Σ S̄ d̂_p x_p / Σ S̄ d̂_p, which is where ∇D̄_i changes sign across a flat band), the
+  /// rule Alg. 2 already applies to particles with ∇D̄_p = 0. It applies only to faces that exist
+  /// before any damage: p's d̂ is its surface flag (s_p = 1, d_p < D_cr) and no particle with
+  /// damage d ≥ D_min maps to the node. At a growing crack the tip particles' gradients are also
+  /// almost in the crack plane but there the sign test is what 001 §2.2-2.3 validate (the band
+  /// centre of a tip is not a plane; applying the rule there stopped the V6 notched-bar crack).
+  bool junction_of_surfaces(std::int64_t p, std::size_t node, const Vec<D>& g, const Vec<D>& nodal) const {
+    const auto& P = problem.particles;
+    return P.surface[p] != 0 && P.damage[p] < problem.contact.critical_damage &&
+           node_damage_max[node] < problem.contact.minimum_damage && node_band_weight[node] > 0.0 &&
+           !gradient_decides_field<D>(g, nodal) && nodal.squaredNorm() > 0.0;
+  }
+
   /// 001 Alg. 2: field 0 when ∇D̄_p · ∇D̄_i ≥ 0, else field 1; a particle beyond the reach of any
   /// damage (∇D̄_p = 0) joins the side of the node it lies on instead of always field 0. With
   /// partitioning by bodies the field is the body id (two bodies, 004 §2.2 multimaterial contact).
@@ -465,7 +511,11 @@ struct Solver<D>::Impl {
     if (by_bodies) return problem.particles.body[p] == 0 ? 0 : 1;
     const Vec<D>& g = particle_gradient[p];
     const Vec<D>& nodal = node_gradient[node];
-    if (g.squaredNorm() > 0.0) return particle_field_at_node<D>(g, nodal);
+    if (g.squaredNorm() > 0.0) {
+      if (!junction_of_surfaces(p, node, g, nodal)) return particle_field_at_node<D>(g, nodal);
+      const Vec<D> centre = node_band_moment[node] / node_band_weight[node];
+      return particle_field_at_node<D>(Vec<D>::Zero(), nodal, Vec<D>(problem.particles.x[p] - centre));
+    }
     if (nodal.squaredNorm() == 0.0) return 0;  // a node away from any damage: one field
     // Only then the node's position (an index decomposition, costly in the scatter loops).
     const Vec<D> offset = problem.particles.x[p] - grid.position(grid.global(static_cast<std::int64_t>(node)));
