@@ -177,11 +177,12 @@ struct Solver<D>::Impl {
   std::array<std::vector<Vec<D>>, 2> node_position;       ///< Σ S̄ m_p x_p per field (004 eq. 8)
   std::vector<double> node_dhat_max;                      ///< largest d̂ mapping to the node
   /// Pre-pass of 001 Alg. 2 (nodal_damage_gradient), for the junction rule of field_of: the
-  /// largest damage d (not d̂: surface flags excluded) mapping to the node, and Σ S̄ d̂_p x_p,
-  /// Σ S̄ d̂_p, whose ratio is the centre of the flagged band at the node.
+  /// largest damage d (not d̂: surface flags excluded) mapping to the node, and per field f the
+  /// sums Σ S̄ d̂_p x_p, Σ S̄ d̂_p over the particles whose gradient decides their field f at the
+  /// node: their ratio c_f is the centre of field f's side of the band.
   std::vector<double> node_damage_max;
-  std::vector<Vec<D>> node_band_moment;
-  std::vector<double> node_band_weight;
+  std::array<std::vector<Vec<D>>, 2> node_side_moment;
+  std::array<std::vector<double>, 2> node_side_weight;
   std::vector<std::int64_t> two_field_nodes;
   std::vector<double> node_friction_work;
   std::vector<double> node_normal_impulse, node_contact_area;  ///< per two-field node, for contact heat
@@ -355,8 +356,10 @@ struct Solver<D>::Impl {
       node_dhat_max.assign(nodes, 0.0);
       if (!by_bodies) {
         node_damage_max.assign(nodes, 0.0);
-        node_band_moment.assign(nodes, Vec<D>::Zero());
-        node_band_weight.assign(nodes, 0.0);
+        for (int f = 0; f < 2; ++f) {
+          node_side_moment[f].assign(nodes, Vec<D>::Zero());
+          node_side_weight[f].assign(nodes, 0.0);
+        }
       }
       for (int f = 0; f < 2; ++f) {
         node_mass_gradient[f].assign(nodes, Vec<D>::Zero());
@@ -447,28 +450,26 @@ struct Solver<D>::Impl {
   template <ShapeFunctionKind Kind>
   void nodal_damage_gradient() {
     const auto& P = problem.particles;
-    auto add_band = [&](std::int64_t p, const Stencil<D>& s) {
-      const double dhat = particle_dhat[p];
-      if (dhat <= 0.0) return;
+    auto add_damage = [&](std::int64_t p, const Stencil<D>& s) {
+      if (P.damage[p] <= 0.0) return;
       for (int e = 0; e < s.count; ++e) {
         const std::size_t i = static_cast<std::size_t>(s.node[e]);
         node_damage_max[i] = std::max(node_damage_max[i], P.damage[p]);
-        node_band_weight[i] += s.weight[e] * dhat;
-        node_band_moment[i] += (s.weight[e] * dhat) * P.x[p];
       }
     };
     if (problem.contact.nodal_gradient == NodalGradientRule::largest) {
       for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
-        add_band(p, s);
+        add_damage(p, s);
         const Vec<D>& g = particle_gradient[p];
         if (g.squaredNorm() <= 0.0) return;
         for (int e = 0; e < s.count; ++e)
           fold_nodal_gradient<D>(g, node_gradient[static_cast<std::size_t>(s.node[e])]);
       });
+      band_sides<Kind>();
       return;
     }
     for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
-      add_band(p, s);
+      add_damage(p, s);
       const Vec<D>& g = particle_gradient[p];
       if (g.squaredNorm() <= 0.0) return;
       for (int e = 0; e < s.count; ++e)
@@ -480,6 +481,25 @@ struct Solver<D>::Impl {
     for (std::int64_t i = 0; i < nodes; ++i)
       if (node_gradient_tensor[i].squaredNorm() > 0.0)
         node_gradient[i] = principal_gradient<D>(node_gradient_tensor[i]);
+    band_sides<Kind>();
+  }
+
+  /// The two sides of the d̂-band at each node (for junction_side): Σ S̄ d̂_p x_p and Σ S̄ d̂_p per
+  /// field over the band particles whose gradient decides their field there (Alg. 2's sign test).
+  template <ShapeFunctionKind Kind>
+  void band_sides() {
+    for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
+      const double dhat = particle_dhat[p];
+      const Vec<D>& g = particle_gradient[p];
+      if (dhat <= 0.0 || g.squaredNorm() <= 0.0) return;
+      for (int e = 0; e < s.count; ++e) {
+        const std::size_t i = static_cast<std::size_t>(s.node[e]);
+        if (s.weight[e] <= 0.0 || !gradient_decides_field<D>(g, node_gradient[i])) continue;
+        const int f = particle_field_at_node<D>(g, node_gradient[i]);
+        node_side_weight[f][i] += s.weight[e] * dhat;
+        node_side_moment[f][i] += (s.weight[e] * dhat) * problem.particles.x[p];
+      }
+    });
   }
 
   /// Whether Alg. 2's sign test is meaningless for surface particle p at node i because p sits
@@ -500,7 +520,8 @@ struct Solver<D>::Impl {
   bool junction_of_surfaces(std::int64_t p, std::size_t node, const Vec<D>& g, const Vec<D>& nodal) const {
     const auto& P = problem.particles;
     return P.surface[p] != 0 && P.damage[p] < problem.contact.critical_damage &&
-           node_damage_max[node] < problem.contact.minimum_damage && node_band_weight[node] > 0.0 &&
+           node_damage_max[node] < problem.contact.minimum_damage && node_side_weight[0][node] > 0.0 &&
+           node_side_weight[1][node] > 0.0 &&
            !gradient_decides_field<D>(g, nodal) && nodal.squaredNorm() > 0.0;
   }
 
@@ -513,8 +534,10 @@ struct Solver<D>::Impl {
     const Vec<D>& nodal = node_gradient[node];
     if (g.squaredNorm() > 0.0) {
       if (!junction_of_surfaces(p, node, g, nodal)) return particle_field_at_node<D>(g, nodal);
-      const Vec<D> centre = node_band_moment[node] / node_band_weight[node];
-      return particle_field_at_node<D>(Vec<D>::Zero(), nodal, Vec<D>(problem.particles.x[p] - centre));
+      // The side of the band p lies on: nearer to c_0 or to c_1 along c_1 − c_0.
+      const Vec<D> c0 = node_side_moment[0][node] / node_side_weight[0][node];
+      const Vec<D> c1 = node_side_moment[1][node] / node_side_weight[1][node];
+      return (problem.particles.x[p] - 0.5 * (c0 + c1)).dot(c1 - c0) <= 0.0 ? 0 : 1;
     }
     if (nodal.squaredNorm() == 0.0) return 0;  // a node away from any damage: one field
     // Only then the node's position (an index decomposition, costly in the scatter loops).
