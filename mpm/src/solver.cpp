@@ -510,13 +510,16 @@ struct Solver<D>::Impl {
   /// corner particle's ∇D̄_p points along the free face's normal — within a few degrees of the
   /// contact plane — and ∇D̄_p · ∇D̄_i (001 Alg. 2) is the noise of two almost perpendicular
   /// vectors: the corner joins the other body's field and is dragged with it. Such a particle is
-  /// instead put on the side of the band it lies on (particle_field_at_node with offset from the
-  /// band centre Σ S̄ d̂_p x_p / Σ S̄ d̂_p, which is where ∇D̄_i changes sign across a flat band), the
-  /// rule Alg. 2 already applies to particles with ∇D̄_p = 0. It applies only to faces that exist
-  /// before any damage: p's d̂ is its surface flag (s_p = 1, d_p < D_cr) and no particle with
-  /// damage d ≥ D_min maps to the node. At a growing crack the tip particles' gradients are also
-  /// almost in the crack plane but there the sign test is what 001 §2.2-2.3 validate (the band
-  /// centre of a tip is not a plane; applying the rule there stopped the V6 notched-bar crack).
+  /// instead put on the side of the band it lies on, as Alg. 2 already does for particles with
+  /// ∇D̄_p = 0: the band particles whose gradients do decide (|cos| ≥ ambiguous_gradient_cosine)
+  /// give the two sides' centres c_0, c_1 (band_sides), and p joins the nearer one along c_1 − c_0
+  /// — the local normal of the band, which at the corner is not tilted by the free face's flags as
+  /// ∇D̄_i is (a one-sided band centre or the node position put the corner on the platen's side at
+  /// nodes below the interface). It applies only to faces that exist before any damage: p's d̂ is
+  /// its surface flag (s_p = 1, d_p < D_cr) and no particle with damage d ≥ D_min maps to the
+  /// node. At a growing crack the tip particles' gradients are also almost in the crack plane, but
+  /// there the sign test is what 001 §2.2-2.3 validate (applying the rule there stopped the V6
+  /// notched-bar crack at 6 of 8 mm).
   bool junction_of_surfaces(std::int64_t p, std::size_t node, const Vec<D>& g, const Vec<D>& nodal) const {
     const auto& P = problem.particles;
     return P.surface[p] != 0 && P.damage[p] < problem.contact.critical_damage &&
