@@ -397,6 +397,12 @@ struct Solver<D>::Impl {
   /// that scatter into the stencil's nodes never race and sum in a thread-independent order.
   template <ShapeFunctionKind Kind, class Body>
   void for_each_particle_scatter(Body&& body) {
+    for_each_particle_scatter_where<Kind>([](std::int64_t) { return true; }, body);
+  }
+
+  /// The same over the particles p with keep(p) only: no stencil is built for the others.
+  template <ShapeFunctionKind Kind, typename Keep, typename Body>
+  void for_each_particle_scatter_where(Keep&& keep, Body&& body) {
     const std::int64_t strips = static_cast<std::int64_t>(strip_start.size()) - 1;
     for (std::int64_t parity = 0; parity < 2; ++parity) {
 #pragma omp parallel
@@ -406,6 +412,7 @@ struct Solver<D>::Impl {
         for (std::int64_t strip = parity; strip < strips; strip += 2) {
           for (std::int64_t k = strip_start[strip]; k < strip_start[strip + 1]; ++k) {
             const std::int64_t p = strip_order[k];
+            if (!keep(p)) continue;
             fill_stencil<Kind>(problem.particles, p, grid, s);
             body(p, s);
           }
@@ -488,10 +495,12 @@ struct Solver<D>::Impl {
   /// field over the band particles whose gradient decides their field there (Alg. 2's sign test).
   template <ShapeFunctionKind Kind>
   void band_sides() {
-    for_each_particle_scatter<Kind>([&](std::int64_t p, const Stencil<D>& s) {
+    auto in_band = [&](std::int64_t p) {
+      return particle_dhat[p] > 0.0 && particle_gradient[p].squaredNorm() > 0.0;
+    };
+    for_each_particle_scatter_where<Kind>(in_band, [&](std::int64_t p, const Stencil<D>& s) {
       const double dhat = particle_dhat[p];
       const Vec<D>& g = particle_gradient[p];
-      if (dhat <= 0.0 || g.squaredNorm() <= 0.0) return;
       for (int e = 0; e < s.count; ++e) {
         const std::size_t i = static_cast<std::size_t>(s.node[e]);
         if (s.weight[e] <= 0.0 || !gradient_decides_field<D>(g, node_gradient[i])) continue;
