@@ -491,7 +491,7 @@ struct Solver<D>::Impl {
     band_sides<Kind>();
   }
 
-  /// The two sides of the d̂-band at each node (for junction_side): Σ S̄ d̂_p x_p and Σ S̄ d̂_p per
+  /// The two sides of the d̂-band at each node (for the junction rule of field_of): Σ S̄ d̂_p x_p and Σ S̄ d̂_p per
   /// field over the band particles whose gradient decides their field there (Alg. 2's sign test).
   template <ShapeFunctionKind Kind>
   void band_sides() {
@@ -538,7 +538,9 @@ struct Solver<D>::Impl {
   }
 
   /// 001 Alg. 2: field 0 when ∇D̄_p · ∇D̄_i ≥ 0, else field 1; a particle beyond the reach of any
-  /// damage (∇D̄_p = 0) joins the side of the node it lies on instead of always field 0. With
+  /// damage (∇D̄_p = 0) joins the side of the node it lies on instead of always field 0, and a
+  /// surface particle at a junction of pre-existing surfaces the side of the band it lies on
+  /// (junction_of_surfaces). With
   /// partitioning by bodies the field is the body id (two bodies, 004 §2.2 multimaterial contact).
   int field_of(std::int64_t p, std::size_t node) const {
     if (by_bodies) return problem.particles.body[p] == 0 ? 0 : 1;
