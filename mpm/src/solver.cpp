@@ -176,6 +176,13 @@ struct Solver<D>::Impl {
   bool needs_contact_area = false;  ///< the contact friction law has a strength term (004 eq. 24)
   std::array<std::vector<Vec<D>>, 2> node_position;       ///< Σ S̄ m_p x_p per field (004 eq. 8)
   std::vector<double> node_dhat_max;                      ///< largest d̂ mapping to the node
+  /// Pre-pass of 001 Alg. 2 (nodal_damage_gradient), for the junction rule of field_of: the
+  /// largest damage d (not d̂: surface flags excluded) mapping to the node, and per field f the
+  /// sums Σ S̄ d̂_p x_p, Σ S̄ d̂_p over the particles whose gradient decides their field f at the
+  /// node: their ratio c_f is the centre of field f's side of the band.
+  std::vector<double> node_damage_max;
+  std::array<std::vector<Vec<D>>, 2> node_side_moment;
+  std::array<std::vector<double>, 2> node_side_weight;
   std::vector<std::int64_t> two_field_nodes;
   std::vector<double> node_friction_work;
   std::vector<double> node_normal_impulse, node_contact_area;  ///< per two-field node, for contact heat
@@ -347,6 +354,13 @@ struct Solver<D>::Impl {
       if (!by_bodies && problem.contact.nodal_gradient == NodalGradientRule::principal)
         node_gradient_tensor.assign(nodes, Mat<D>::Zero());
       node_dhat_max.assign(nodes, 0.0);
+      if (!by_bodies) {
+        node_damage_max.assign(nodes, 0.0);
+        for (int f = 0; f < 2; ++f) {
+          node_side_moment[f].assign(nodes, Vec<D>::Zero());
+          node_side_weight[f].assign(nodes, 0.0);
+        }
+      }
       for (int f = 0; f < 2; ++f) {
         node_mass_gradient[f].assign(nodes, Vec<D>::Zero());
         node_dhat[f].assign(nodes, 0.0);
@@ -383,12 +397,12 @@ struct Solver<D>::Impl {
   /// that scatter into the stencil's nodes never race and sum in a thread-independent order.
   template <ShapeFunctionKind Kind, class Body>
   void for_each_particle_scatter(Body&& body) {
-    for_each_particle_scatter<Kind>([](std::int64_t) { return true; }, std::forward<Body>(body));
+    for_each_particle_scatter_where<Kind>([](std::int64_t) { return true; }, body);
   }
 
-  /// The same over the particles for which takes_part(p) holds; the others cost no stencil.
-  template <ShapeFunctionKind Kind, class Filter, class Body>
-  void for_each_particle_scatter(Filter&& takes_part, Body&& body) {
+  /// The same over the particles p with keep(p) only: no stencil is built for the others.
+  template <ShapeFunctionKind Kind, typename Keep, typename Body>
+  void for_each_particle_scatter_where(Keep&& keep, Body&& body) {
     const std::int64_t strips = static_cast<std::int64_t>(strip_start.size()) - 1;
     for (std::int64_t parity = 0; parity < 2; ++parity) {
 #pragma omp parallel
@@ -398,7 +412,7 @@ struct Solver<D>::Impl {
         for (std::int64_t strip = parity; strip < strips; strip += 2) {
           for (std::int64_t k = strip_start[strip]; k < strip_start[strip + 1]; ++k) {
             const std::int64_t p = strip_order[k];
-            if (!takes_part(p)) continue;
+            if (!keep(p)) continue;
             fill_stencil<Kind>(problem.particles, p, grid, s);
             body(p, s);
           }
@@ -442,19 +456,34 @@ struct Solver<D>::Impl {
   /// particle gradient of largest norm (total-order tie-break: independent of the scatter order).
   template <ShapeFunctionKind Kind>
   void nodal_damage_gradient() {
-    // Only particles within reach of damage or a surface have a gradient; the others (most of a
-    // body's interior) need no stencil here.
-    const auto has_gradient = [&](std::int64_t p) { return particle_gradient[p].squaredNorm() > 0.0; };
+    const auto& P = problem.particles;
+    auto add_damage = [&](std::int64_t p, const Stencil<D>& s) {
+      if (P.damage[p] <= 0.0) return;
+      for (int e = 0; e < s.count; ++e) {
+        const std::size_t i = static_cast<std::size_t>(s.node[e]);
+        node_damage_max[i] = std::max(node_damage_max[i], P.damage[p]);
+      }
+    };
+    // Only damaged particles and those within reach of damage or a surface (a gradient) take
+    // part; the others (most of a body's interior) need no stencil here.
+    const auto takes_part = [&](std::int64_t p) {
+      return P.damage[p] > 0.0 || particle_gradient[p].squaredNorm() > 0.0;
+    };
     if (problem.contact.nodal_gradient == NodalGradientRule::largest) {
-      for_each_particle_scatter<Kind>(has_gradient, [&](std::int64_t p, const Stencil<D>& s) {
+      for_each_particle_scatter_where<Kind>(takes_part, [&](std::int64_t p, const Stencil<D>& s) {
+        add_damage(p, s);
         const Vec<D>& g = particle_gradient[p];
+        if (g.squaredNorm() <= 0.0) return;
         for (int e = 0; e < s.count; ++e)
           fold_nodal_gradient<D>(g, node_gradient[static_cast<std::size_t>(s.node[e])]);
       });
+      band_sides<Kind>();
       return;
     }
-    for_each_particle_scatter<Kind>(has_gradient, [&](std::int64_t p, const Stencil<D>& s) {
+    for_each_particle_scatter_where<Kind>(takes_part, [&](std::int64_t p, const Stencil<D>& s) {
+      add_damage(p, s);
       const Vec<D>& g = particle_gradient[p];
+      if (g.squaredNorm() <= 0.0) return;
       for (int e = 0; e < s.count; ++e)
         if (s.weight[e] > 0.0)
           accumulate_gradient_tensor<D>(g, node_gradient_tensor[static_cast<std::size_t>(s.node[e])]);
@@ -464,16 +493,71 @@ struct Solver<D>::Impl {
     for (std::int64_t i = 0; i < nodes; ++i)
       if (node_gradient_tensor[i].squaredNorm() > 0.0)
         node_gradient[i] = principal_gradient<D>(node_gradient_tensor[i]);
+    band_sides<Kind>();
+  }
+
+  /// The two sides of the d̂-band at each node (for the junction rule of field_of): Σ S̄ d̂_p x_p and Σ S̄ d̂_p per
+  /// field over the band particles whose gradient decides their field there (Alg. 2's sign test).
+  template <ShapeFunctionKind Kind>
+  void band_sides() {
+    auto in_band = [&](std::int64_t p) {
+      return particle_dhat[p] > 0.0 && particle_gradient[p].squaredNorm() > 0.0;
+    };
+    for_each_particle_scatter_where<Kind>(in_band, [&](std::int64_t p, const Stencil<D>& s) {
+      const double dhat = particle_dhat[p];
+      const Vec<D>& g = particle_gradient[p];
+      for (int e = 0; e < s.count; ++e) {
+        const std::size_t i = static_cast<std::size_t>(s.node[e]);
+        if (s.weight[e] <= 0.0 || !gradient_decides_field<D>(g, node_gradient[i])) continue;
+        const int f = particle_field_at_node<D>(g, node_gradient[i]);
+        node_side_weight[f][i] += s.weight[e] * dhat;
+        node_side_moment[f][i] += (s.weight[e] * dhat) * problem.particles.x[p];
+      }
+    });
+  }
+
+  /// Whether Alg. 2's sign test is meaningless for surface particle p at node i because p sits
+  /// where pre-existing surfaces meet. 001 §2.4 makes touching bodies separable by flagging their
+  /// boundary particles (d̂ = s = 1), so the kernel field D̄ is a band along every flagged face and
+  /// ∇D̄_p points from p's side into the band (001 eq. 17-19). At a node of a contact surface whose
+  /// band ends at a free face of one body (the billet corner under the overhanging platen, P2), the
+  /// corner particle's ∇D̄_p points along the free face's normal — within a few degrees of the
+  /// contact plane — and ∇D̄_p · ∇D̄_i (001 Alg. 2) is the noise of two almost perpendicular
+  /// vectors: the corner joins the other body's field and is dragged with it. Such a particle is
+  /// instead put on the side of the band it lies on, as Alg. 2 already does for particles with
+  /// ∇D̄_p = 0: the band particles whose gradients do decide (|cos| ≥ ambiguous_gradient_cosine)
+  /// give the two sides' centres c_0, c_1 (band_sides), and p joins the nearer one along c_1 − c_0
+  /// — the local normal of the band, which at the corner is not tilted by the free face's flags as
+  /// ∇D̄_i is (a one-sided band centre or the node position put the corner on the platen's side at
+  /// nodes below the interface). It applies only to faces that exist before any damage: p's d̂ is
+  /// its surface flag (s_p = 1, d_p < D_cr) and no particle with damage d ≥ D_min maps to the
+  /// node. At a growing crack the tip particles' gradients are also almost in the crack plane, but
+  /// there the sign test is what 001 §2.2-2.3 validate (applying the rule there stopped the V6
+  /// notched-bar crack at 6 of 8 mm).
+  bool junction_of_surfaces(std::int64_t p, std::size_t node, const Vec<D>& g, const Vec<D>& nodal) const {
+    const auto& P = problem.particles;
+    return P.surface[p] != 0 && P.damage[p] < problem.contact.critical_damage &&
+           node_damage_max[node] < problem.contact.minimum_damage && node_side_weight[0][node] > 0.0 &&
+           node_side_weight[1][node] > 0.0 &&
+           !gradient_decides_field<D>(g, nodal) && nodal.squaredNorm() > 0.0;
   }
 
   /// 001 Alg. 2: field 0 when ∇D̄_p · ∇D̄_i ≥ 0, else field 1; a particle beyond the reach of any
-  /// damage (∇D̄_p = 0) joins the side of the node it lies on instead of always field 0. With
+  /// damage (∇D̄_p = 0) joins the side of the node it lies on instead of always field 0, and a
+  /// surface particle at a junction of pre-existing surfaces the side of the band it lies on
+  /// (junction_of_surfaces). With
   /// partitioning by bodies the field is the body id (two bodies, 004 §2.2 multimaterial contact).
   int field_of(std::int64_t p, std::size_t node) const {
     if (by_bodies) return problem.particles.body[p] == 0 ? 0 : 1;
     const Vec<D>& g = particle_gradient[p];
     const Vec<D>& nodal = node_gradient[node];
-    if (g.squaredNorm() > 0.0) return particle_field_at_node<D>(g, nodal);
+    if (g.squaredNorm() > 0.0) {
+      if (!junction_of_surfaces(p, node, g, nodal)) return particle_field_at_node<D>(g, nodal);
+      // The side of the band p lies on: nearer to c_0 or to c_1 along c_1 − c_0.
+      const Vec<D> c0 = node_side_moment[0][node] / node_side_weight[0][node];
+      const Vec<D> c1 = node_side_moment[1][node] / node_side_weight[1][node];
+      return (problem.particles.x[p] - 0.5 * (c0 + c1)).dot(c1 - c0) <= 0.0 ? 0 : 1;
+    }
     if (nodal.squaredNorm() == 0.0) return 0;  // a node away from any damage: one field
     // Only then the node's position (an index decomposition, costly in the scatter loops).
     const Vec<D> offset = problem.particles.x[p] - grid.position(grid.global(static_cast<std::int64_t>(node)));

@@ -630,6 +630,20 @@ TEST(DfgPartition, PrincipalGradientOfKnownTensors) {
             1);  // gradient wins
 }
 
+TEST(DfgPartition, GradientDecidesFieldOnlyAwayFromTheSurfacePlane) {
+  // |cos(∇D̄_p, ∇D̄_i)| = 0.1 < ambiguous_gradient_cosine = 0.2: a gradient 84° from the nodal
+  // direction does not decide (a junction particle's gradient along a free face's normal).
+  const Vec<2> nodal(0.0, 3.0);
+  EXPECT_FALSE(gradient_decides_field<2>(Vec<2>(std::sqrt(0.99), -0.1), nodal));
+  EXPECT_FALSE(gradient_decides_field<2>(Vec<2>(std::sqrt(0.99), 0.1), nodal));
+  // |cos| = 0.3 decides, whatever the lengths.
+  EXPECT_TRUE(gradient_decides_field<2>(Vec<2>(std::sqrt(0.91), -0.3) * 5e3, nodal));
+  EXPECT_TRUE(gradient_decides_field<2>(Vec<2>(0.0, -1.0), nodal));
+  // A zero gradient at either end never decides.
+  EXPECT_FALSE(gradient_decides_field<2>(Vec<2>::Zero(), nodal));
+  EXPECT_FALSE(gradient_decides_field<2>(Vec<2>(0.0, 1.0), Vec<2>::Zero()));
+}
+
 // ---- Thread-count independence ----
 
 TEST(DamageField, OneAndTwoThreadsGiveIdenticalResults) {

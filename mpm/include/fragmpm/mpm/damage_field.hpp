@@ -209,6 +209,23 @@ inline std::uint8_t particle_field_at_node(const Vec<D>& particle_gradient,
   return particle_gradient.dot(nodal_gradient) >= 0.0 ? 0 : 1;
 }
 
+/// |cos| between ∇D̄_p and ∇D̄_i below which a surface-flagged particle's gradient carries no
+/// side information at a node (the solver's junction rule, field_of). Where a free face ends at a
+/// contact surface (the billet corner under the overhanging platen, BENCHMARKS P2) the junction
+/// particle's DFG points along the free face's normal, within a few degrees of the contact plane
+/// (cos = −0.04 … 0.08 there), and the sign of ∇D̄_p · ∇D̄_i flips with round-off-sized changes of
+/// the nodal direction. arcsin(0.2) ≈ 12°; the P2 error is the same for thresholds 0.1 to 0.3.
+inline constexpr double ambiguous_gradient_cosine = 0.2;
+
+/// Whether ∇D̄_p decides the field of particle p at node i by Alg. 2's sign test: it is further
+/// than ambiguous_gradient_cosine from perpendicular to ∇D̄_i (false when either is zero).
+template <int D>
+inline bool gradient_decides_field(const Vec<D>& particle_gradient, const Vec<D>& nodal_gradient) {
+  const double along = particle_gradient.dot(nodal_gradient);
+  return along * along > ambiguous_gradient_cosine * ambiguous_gradient_cosine *
+                             particle_gradient.squaredNorm() * nodal_gradient.squaredNorm();
+}
+
 /// Alg. 2 with a position fallback for particles out of reach of any damage (∇D̄_p = 0, which
 /// plain Alg. 2 puts in field 0 whichever side of the crack they are on; with r_p = cell diagonal
 /// this happens to the far particles of a CPDI or linear stencil at nodes on a crack). Such a
