@@ -721,7 +721,17 @@ struct Solver<D>::Impl {
       const WallSpec<D>& wall = problem.walls[w];
       const Vec<D> wall_velocity = wall.velocity.velocity(time + dt);
       const Vec<D> wall_shift = wall.velocity.displacement(time + dt);
-      const Vec<D> wall_point = wall.point + wall_shift;
+      // A bilateral wall (fixed, roller) holds the nodes it touches: when it moves away from the
+      // material it pulls them along instead of letting go, so its plane test keeps the start plane
+      // until the wall advances into the material. Without this, a driven edge whose wall retracts
+      // (the trailing driver of V7, 004 §3: edges "moved by rigid blocks") was released at once and
+      // its Poisson pre-stress came free as a 70 J/m kinetic-energy burst. A contact wall is one-sided
+      // and always tests its current plane. (Limitation: a bilateral wall that advances and then
+      // retracts releases the nodes it took beyond its start plane.)
+      const double advance = wall_shift.dot(wall.normal);
+      const bool holds = wall.kind != WallKind::contact && advance < 0.0;
+      const Vec<D> held_shift = wall_shift - (holds ? advance : 0.0) * wall.normal;
+      const Vec<D> wall_point = wall.point + held_shift;
       Vec<D> impulse_sum = Vec<D>::Zero();
       double work = 0.0, friction = 0.0;
       // Serial and in node order: few nodes pass the plane test, and the sums must not depend on
@@ -729,7 +739,7 @@ struct Solver<D>::Impl {
       for (std::int64_t i = 0; i < nodes; ++i) {
         const Vec<D> node_point = grid.position(grid.global(i));
         if ((node_point - wall_point).dot(wall.normal) > tolerance) continue;
-        if (!wall.region.contains(node_point, wall_shift, tolerance)) continue;
+        if (!wall.region.contains(node_point, held_shift, tolerance)) continue;
         for (int f = 0; f < fields; ++f) {
           const double m = node_mass[f][i];
           if (m <= negligible_mass) continue;
