@@ -197,11 +197,13 @@ class ThermalModule {
         rate_[static_cast<std::size_t>(f)][i] = (value - temperature_[static_cast<std::size_t>(f)][i]) / dt;
     }
 
-    // 5. Particles: θ_p += Δt Σ_i S̄_ip θ̇_i (eq. 62), then the local sources of the mechanical step
+    // 5. Particles: θ_p += Δt Σ_i S̄_ip θ̇_i (eq. 62), blended with the PIC value when
+    //    thermal_pic_fraction > 0 (TimeSpec), then the local sources of the mechanical step
     //    that just ended (eq. 39, 28, 40), and the conduction limit for the next step.
     const std::int64_t n = static_cast<std::int64_t>(P.size());
     const double h2 = host.grid.cell_size * host.grid.cell_size;
     const double courant = host.problem.time.cfl;
+    const double pic = host.problem.time.thermal_pic_fraction;  // 0 = eq. 62 alone
     double limit = std::numeric_limits<double>::infinity();
 #pragma omp parallel reduction(min : limit)
     {
@@ -216,6 +218,15 @@ class ThermalModule {
         }
         const std::size_t m = static_cast<std::size_t>(P.material[p]);
         double theta = P.temperature[p] + dt * change;
+        if (pic > 0.0) {  // PIC part: Σ S̄ (θ_i + Δt θ̇_i), a convex combination of nodal temperatures
+          double projected = 0.0;
+          for (int e = 0; e < s.count; ++e) {
+            const std::size_t i = static_cast<std::size_t>(s.node[e]);
+            const int f = field(p, i);
+            projected += s.weight[e] * (temperature_[f][i] + dt * rate_[f][i]);
+          }
+          theta = (1.0 - pic) * theta + pic * projected;
+        }
         const double J = P.F[p].determinant();
         const double density0 = P.mass[p] / P.volume0[p];
         const double d = P.damage[p];

@@ -82,7 +82,7 @@ int read_grid(const Section& g, mpm::GridSpec<2>& grid) {
 }
 
 void read_time(const Section& t, mpm::TimeSpec& time) {
-  t.allow_only({"cfl", "dt", "pic_fraction"});
+  t.allow_only({"cfl", "dt", "pic_fraction", "thermal_pic_fraction"});
   time.cfl = t.optional_number("cfl").value_or(0.4);
   if (!(time.cfl > 0.0 && time.cfl <= 1.0)) t.expected("cfl", "a Courant number 0 < cfl <= 1");
   if (auto dt = t.optional_quantity("dt", QK::time)) {
@@ -92,6 +92,9 @@ void read_time(const Section& t, mpm::TimeSpec& time) {
   time.pic_fraction = t.optional_number("pic_fraction").value_or(0.0);
   if (!(time.pic_fraction >= 0.0 && time.pic_fraction <= 1.0))
     t.expected("pic_fraction", "a PIC fraction 0 <= pic_fraction <= 1 (000 eq. 64)");
+  time.thermal_pic_fraction = t.optional_number("thermal_pic_fraction").value_or(0.0);
+  if (!(time.thermal_pic_fraction >= 0.0 && time.thermal_pic_fraction <= 1.0))
+    t.expected("thermal_pic_fraction", "a PIC fraction 0 <= thermal_pic_fraction <= 1 (0 = 000 eq. 62)");
 }
 
 mpm::MaterialSpec read_material(const Section& m, std::optional<double> thickness, const mpm::GridSpec<2>& grid,

@@ -485,3 +485,30 @@ max_steps = 300
   EXPECT_LT(friction_work("400 K"), 1e-20 * cold);
   EXPECT_EQ(friction_work("450 K"), 0.0);
 }
+
+TEST(ThermalSolver, TemperaturePicFractionKeepsTheRangeAndConservesHeat) {
+  // Two bonded blocks at 400 K and 300 K with conductivities 100 and 0.01 W/(m K), drifting at
+  // 0.1 m/s so cells come to hold both (scenes/stability/conductivity-contrast.toml). No heat source:
+  // the maximum principle bounds every temperature by [300, 400] K. The incremental update of 000
+  // eq. 62 alone carries particles past 400 K; with ζ_θ = 0.05 they stay inside. Heat content is
+  // conserved either way.
+  const std::string scene = pipeline::embedded_scene("stability/conductivity-contrast.toml");
+  double hottest[2] = {0.0, 0.0};
+  for (int run = 0; run < 2; ++run) {
+    const std::string text =
+        replaced(scene, "[contact]", run == 0 ? "[contact]" : "[time]\nthermal_pic_fraction = 0.05\n\n[contact]");
+    mpm::Solver<2> solver(pipeline::parse_scene(text, "conductivity-contrast.toml"));
+    const double heat0 = mpm::thermal_energy<2>(solver.problem(), solver.particles());
+    for (int s = 0; s < 300; ++s) ASSERT_FALSE(solver.step());  // the scene's max_steps
+    const auto& T = solver.particles().temperature;
+    hottest[run] = *std::max_element(T.begin(), T.end());
+    const double coldest = *std::min_element(T.begin(), T.end());
+    const double heat = mpm::thermal_energy<2>(solver.problem(), solver.particles());
+    const auto& mass = solver.particles().mass;
+    const double scale = std::accumulate(mass.begin(), mass.end(), 0.0) * 1000.0 * 100.0;  // C ΔT [J/m]
+    EXPECT_LT(std::abs(heat - heat0) / scale, 1e-12) << "run " << run;
+    EXPECT_GE(coldest, 300.0 - 1e-9) << "run " << run;
+  }
+  EXPECT_GT(hottest[0], 401.0);  // eq. 62 alone overshoots (407.8 K)
+  EXPECT_LE(hottest[1], 400.0 + 1e-9);
+}

@@ -495,7 +495,9 @@ std::string with_second_body(const std::string& body) {
 std::vector<BadScene> bad_scenes() {
   return {
       {"unknown_key", replace(kGood, "cfl = 0.5", "cfl = 0.5\ncfl_max = 1"), "cfl_max", "time.cfl_max",
-       "unknown key: expected one of cfl, dt, pic_fraction"},
+       "unknown key: expected one of cfl, dt, pic_fraction, thermal_pic_fraction"},
+      {"thermal_pic_fraction_above_one", replace(kGood, "cfl = 0.5", "cfl = 0.5\nthermal_pic_fraction = 1.5"),
+       "thermal_pic_fraction", "time.thermal_pic_fraction", "0 <= thermal_pic_fraction <= 1"},
       {"misspelt_key", replace(kGood, "cell_size =", "cel_size ="), "cel_size", "grid.cel_size",
        "did you mean 'cell_size'"},
       {"unknown_table", kGood + "\n[solver]\norder = 2\n", "[solver]", "solver", "unknown key"},

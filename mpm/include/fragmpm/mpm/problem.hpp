@@ -125,6 +125,11 @@ struct TimeSpec {
   double cfl = 0.4;           ///< C_cfl in Δt = C h / max(c + |v|)
   double fixed_dt = 0.0;      ///< [s]; 0 = adaptive
   double pic_fraction = 0.0;  ///< ζ of 000 eq. (64): 0 = pure FLIP, 1 = pure PIC
+  /// ζ_θ for the particle temperatures: θ_p ← (1 − ζ_θ)(θ_p + Δt Σ S̄ θ̇_i) + ζ_θ Σ S̄ (θ_i + Δt θ̇_i).
+  /// 0 is 000 eq. 62, whose increment lets a particle hotter than the nodal interpolant warm further
+  /// (7.8 K past the hottest initial temperature at a conductivity contrast of 10⁴); the PIC part
+  /// is a convex combination of nodal temperatures and conserves the heat content exactly.
+  double thermal_pic_fraction = 0.0;
 };
 
 struct StopSpec {
