@@ -136,6 +136,25 @@ double degradable_energy(const NeoHookean& model, const Mat<D>& F, Degradation d
   return psi_t;
 }
 
+template <int D>
+DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F, const Mat<D>& trial_stress,
+                                     double damage, Degradation degradation, double psi) {
+  if (degradation == Degradation::isotropic) return {(1.0 - damage) * trial_stress, psi};  // [XLS21] eq. (7)
+  const Mat<D> b = F * F.transpose();
+  const Mat<D> tau = model.kirchhoff<D>(F);
+  Eigensolver<D> es;
+  es.computeDirect(b);
+  DegradedState<D> out{trial_stress, 0.0};
+  for (int i = 0; i < D; ++i) {
+    const Vec<D> n = es.eigenvectors().col(i);
+    const double sigma_i = n.dot(trial_stress * n);
+    if (sigma_i > 0.0) out.stress -= (damage * sigma_i) * (n * n.transpose());
+    const double tau_i = n.dot(tau * n);
+    if (tau_i > 0.0) out.degradable += 0.25 * tau_i * std::log(es.eigenvalues()[i]);
+  }
+  return out;
+}
+
 double weibull_median_strength(double volume, const WeibullStrength& w, int dimension) {
   const double V = dimension == 2 ? volume * w.thickness : volume;
   return w.reference_strength * std::pow(w.reference_volume / V, 1.0 / w.modulus);
@@ -164,5 +183,9 @@ template Mat<2> degrade_stress<2>(const Mat<2>&, double, Degradation);
 template Mat<3> degrade_stress<3>(const Mat<3>&, double, Degradation);
 template double degradable_energy<2>(const NeoHookean&, const Mat<2>&, Degradation);
 template double degradable_energy<3>(const NeoHookean&, const Mat<3>&, Degradation);
+template DegradedState<2> degrade_with_energy<2>(const NeoHookean&, const Mat<2>&, const Mat<2>&, double, Degradation,
+                                                 double);
+template DegradedState<3> degrade_with_energy<3>(const NeoHookean&, const Mat<3>&, const Mat<3>&, double, Degradation,
+                                                 double);
 
 }  // namespace fragmpm::mpm

@@ -93,6 +93,21 @@ Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation deg
 template <int D>
 double degradable_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation);
 
+/// Degraded stress and degradable energy of a damaged particle from one spectral decomposition.
+template <int D>
+struct DegradedState {
+  Mat<D> stress;            ///< degraded Cauchy stress [Pa]
+  double degradable = 0.0;  ///< ψ_t [J/m³], not yet bounded by ψ
+};
+
+/// degrade_stress and degradable_energy together, with one eigen-solve: the trial stress of an
+/// isotropic material (elastic part plus an isotropic thermal pressure) is coaxial with b = F Fᵀ, so
+/// the eigenvectors n_i of b serve both: σ = σ̄ − d Σ_{σ̄_i > 0} σ̄_i n_i ⊗ n_i with σ̄_i = n_i·σ̄ n_i
+/// ([HH17] eq. (26)-(27)), and ψ_t = ½ Σ_{τ_i > 0} τ_i ln λ_i. `psi` = ψ(F) [J/m³] (isotropic: ψ_t = ψ).
+template <int D>
+DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F, const Mat<D>& trial_stress,
+                                     double damage, Degradation degradation, double psi);
+
 /// Median of the Weibull strength of a particle of volume V [m³]: σ̄_f (V̄ / V)^{1/m} (001 eq. 25 with
 /// ℛ = ½). In 2D `volume` is an area and is multiplied by the thickness.
 double weibull_median_strength(double volume, const WeibullStrength& weibull, int dimension);

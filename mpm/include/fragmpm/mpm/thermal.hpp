@@ -1,7 +1,7 @@
 #pragma once
 // Thermo-mechanical coupling of one material point (000 §2.1-2.3): thermal stress, elastic
 // structural heating, damage heating, and the explicit thermal stability limit. The nodal heat
-// transfer that uses these lives in mpm/src/thermal_step.hpp.
+// transfer that uses these lives in mpm/src/step/thermal_stage.cpp.
 //
 // Free energy per reference volume (000 eq. 1-5, 16):
 //   ρ₀ψ = (1 − d)(U(J) + W(b̄)) − 3(1 − d) α (θ − θ₀) U′(J) + ρ₀ c[(θ − θ₀) − θ ln(θ/θ₀)],

@@ -1,0 +1,58 @@
+#pragma once
+// The constitutive update of one particle, the same at initialisation and at the end of every step:
+// trial stress σ̄ from F (neo-Hookean plus the thermal pressure, [XLS21] eq. (3)), the damage law on
+// σ̄, and the degraded stress with the stored energy ψ(F) − d ψ_t ([HH17] eq. (26)-(27) or
+// [XLS21] eq. (7)). ψ_t is the energy the degradation acts on; raising d by Δd at fixed F releases
+// Δd ψ_t (the secant dissipation, see damage_law.cpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "fragmpm/mpm/damage_law.hpp"
+#include "step/step_state.hpp"
+
+namespace fragmpm::mpm {
+
+struct ConstitutiveResult {
+  double stored = 0.0;      ///< recoverable energy per reference volume [J/m³]
+  double dissipated = 0.0;  ///< released by this update's damage increment [J/m³]
+};
+
+/// AdvanceDamage: evaluate the damage law (the step); false keeps d (initial state, restart).
+template <int D, bool Thermal, bool AdvanceDamage>
+inline ConstitutiveResult update_constitutive(StepState<D>& state, std::int64_t p, double dt) {
+  auto& P = state.problem.particles;
+  const int material = P.material[p];
+  const NeoHookean& model = state.models[static_cast<std::size_t>(material)];
+  Mat<D> trial = model.cauchy<D>(P.F[p]);
+  if constexpr (Thermal) trial += state.thermal->stress(material, P.F[p], P.temperature[p]);
+  const double psi = model.energy_density<D>(P.F[p]);
+  if (!state.material_damages[static_cast<std::size_t>(material)]) {
+    P.stress[p] = trial;
+    return {psi, 0.0};
+  }
+  const MaterialSpec& spec = state.problem.materials[static_cast<std::size_t>(material)];
+  const double damage_before = P.damage[p];
+  if constexpr (AdvanceDamage) {
+    // l_ch = particle size: the width of the one-particle band a crack localises in (see
+    // rankine_softening_modulus for why not the paper's cell diagonal).
+    const double band_width = spec.characteristic_length > 0.0
+                                  ? spec.characteristic_length
+                                  : (D == 2 ? std::sqrt(P.volume0[p]) : std::cbrt(P.volume0[p]));
+    update_damage<D>(spec.damage, trial, P.strength[p], band_width, dt, P.damage_history[p], P.damage[p]);
+  }
+  const double d = P.damage[p];
+  if (d <= 0.0) {
+    P.stress[p] = trial;
+    return {psi, 0.0};
+  }
+  const DegradedState<D> degraded = degrade_with_energy<D>(model, P.F[p], trial, d, spec.degradation, psi);
+  // ½ Σ τᵢ ln λᵢ is the exact released energy only at small strain; at large stretch it can exceed
+  // ψ itself, so it is bounded by ψ: damage never stores negative energy.
+  const double degradable = std::clamp(degraded.degradable, 0.0, psi);
+  P.stress[p] = degraded.stress;
+  if constexpr (Thermal) state.degradable[static_cast<std::size_t>(p)] = degradable;
+  return {psi - d * degradable, (d - damage_before) * degradable};
+}
+
+}  // namespace fragmpm::mpm

@@ -1,0 +1,147 @@
+// G2P ([XLS21] eq. (64)-(66)) and the constitutive update that closes the step
+// (update-stress-last): velocities and positions from the grid, F and the CPDI domain by the
+// midpoint increment, then stress, damage and stored energy.
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "step/constitutive_update.hpp"
+#include "step/failure_text.hpp"
+#include "step/particle_loops.hpp"
+#include "step/stages.hpp"
+
+namespace fragmpm::mpm {
+
+namespace {
+
+/// Failed particles keep their CPDI domain within one cell: the longest diagonal is scaled down to
+/// h ([HH17] §2.6), so a fully damaged particle cannot smear across the crack it opened.
+template <int D>
+void limit_failed_domain(Mat<D>& domain, double cell_size) {
+  double longest2 = 0.0;
+  for (int signs = 0; signs < (1 << (D - 1)); ++signs) {
+    Vec<D> diagonal = domain.col(0);
+    for (int k = 1; k < D; ++k) diagonal += ((signs >> (k - 1)) & 1 ? -1.0 : 1.0) * domain.col(k);
+    longest2 = std::max(longest2, diagonal.squaredNorm());
+  }
+  const double limit2 = cell_size * cell_size;
+  if (longest2 > limit2) domain *= std::sqrt(limit2 / longest2);
+}
+
+template <int D>
+NumericalFailure inverted_particle(const StepState<D>& state, std::int64_t p, double dt) {
+  const auto& P = state.problem.particles;
+  NumericalFailure failure;
+  failure.step = state.step + 1;
+  failure.time = state.time + dt;
+  failure.particle = p;
+  failure.what = "particle " + std::to_string(p) + " (body " + std::to_string(P.body[p]) + ", material '" +
+                 state.problem.materials[P.material[p]].name + "', damage " + std::to_string(P.damage[p]) +
+                 ") became inverted or non-finite: J = " + std::to_string(P.F[p].determinant()) +
+                 ", F = " + format_matrix<D>(P.F[p]) + ", x = " + format_vector<D>(P.x[p]) +
+                 " m, v = " + format_vector<D>(P.v[p]) + " m/s, dt = " + std::to_string(dt) + " s";
+  return failure;
+}
+
+}  // namespace
+
+template <int D, ShapeFunctionKind Kind, bool Partitioned, bool Thermal>
+std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt) {
+  auto& P = state.problem.particles;
+  const NodeFields<D>& N = state.nodes;
+  const std::int64_t n = static_cast<std::int64_t>(P.size());
+  const double pic = state.problem.time.pic_fraction;
+  constexpr bool deform_domain = Kind == ShapeFunctionKind::cpdi;
+  const Vec<D> gravity = state.problem.gravity;
+  const bool loaded = !state.load_force.empty();
+  const double cell_size = state.grid.cell_size;
+  double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0, max_speed = 0.0;
+  std::int64_t failed = -1;
+  const int slots = omp_get_max_threads();
+  size_array(state.momentum_parts, static_cast<std::size_t>(D) * static_cast<std::size_t>(slots));
+  std::fill(state.momentum_parts.begin(), state.momentum_parts.end(), 0.0);
+#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated) reduction(max : max_speed)
+  {
+    Stencil<D> s;
+    Vec<D> momentum = Vec<D>::Zero();
+    std::int64_t first_failed = -1;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t p = 0; p < n; ++p) {
+      fill_stencil<D, Kind>(P, p, state.grid, s);
+      Vec<D> v_pic = Vec<D>::Zero(), v_change = Vec<D>::Zero();
+      Mat<D> velocity_gradient = Mat<D>::Zero();
+      for (int e = 0; e < s.count; ++e) {
+        const std::size_t i = static_cast<std::size_t>(s.node[e]);
+        const int f = field_at<D, Partitioned>(state, p, e);
+        const Vec<D>& velocity = N.velocity[f][i];
+        v_pic += s.weight[e] * velocity;
+        v_change += s.weight[e] * (velocity - N.velocity_lumped[f][i]);
+        velocity_gradient += velocity * s.gradient[e].transpose();
+      }
+      const Vec<D> displacement = dt * v_pic;
+      P.x[p] += displacement;
+      P.v[p] = (1.0 - pic) * (P.v[p] + v_change) + pic * v_pic;
+      // [XLS21] eq. (66) updates F with I + Δt L, which stretches a rigidly rotating body by (ωΔt)²
+      // per step (a spinning disk builds up stress). The midpoint increment [HW80]
+      // (I − ΔtL/2)⁻¹(I + ΔtL/2) agrees to O(Δt²) and is exactly orthogonal for a spin.
+      const Mat<D> half_step = 0.5 * dt * velocity_gradient;
+      const Mat<D> increment = (Mat<D>::Identity() - half_step).inverse() * (Mat<D>::Identity() + half_step);
+      P.F[p] = increment * P.F[p];
+      if constexpr (deform_domain) P.domain[p] = increment * P.domain[p];
+      const double J = P.F[p].determinant();
+      if (!(J > 0.0) || !P.v[p].allFinite() || !P.F[p].allFinite()) {
+        if (first_failed < 0) first_failed = p;
+        continue;
+      }
+      const ConstitutiveResult energy = update_constitutive<D, Thermal, true>(state, p, dt);
+      strain += P.volume0[p] * energy.stored;
+      dissipated += P.volume0[p] * energy.dissipated;
+      if constexpr (deform_domain)
+        if (P.damage[p] >= 1.0) limit_failed_domain<D>(P.domain[p], cell_size);
+      kinetic += 0.5 * P.mass[p] * P.v[p].squaredNorm();
+      gravity_work += P.mass[p] * gravity.dot(displacement);
+      if (loaded) load_work += state.load_force[p].dot(displacement);
+      momentum += P.mass[p] * P.v[p];
+      const double density = P.mass[p] / (P.volume0[p] * J);
+      max_speed = std::max(max_speed, state.models[P.material[p]].wave_speed(density) + P.v[p].norm());
+    }
+    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+    for (int k = 0; k < D; ++k) state.momentum_parts[t * D + k] = momentum[k];
+#pragma omp critical(fragmpm_g2p_failure)
+    if (first_failed >= 0 && (failed < 0 || first_failed < failed)) failed = first_failed;
+  }
+  if (failed >= 0) return inverted_particle(state, failed, dt);
+  state.row.momentum.setZero();
+  for (std::size_t t = 0; t < static_cast<std::size_t>(slots); ++t)
+    for (int k = 0; k < D; ++k) state.row.momentum[k] += state.momentum_parts[t * D + k];
+  state.row.kinetic = kinetic;
+  state.row.strain = strain;
+  state.totals.gravity_work += gravity_work;
+  state.totals.load_work += load_work;
+  state.totals.dissipated += dissipated;
+  state.next_dt_limit = max_speed > 0.0 ? state.problem.time.cfl * cell_size / (std::sqrt(double(D)) * max_speed)
+                                        : std::numeric_limits<double>::infinity();
+  return std::nullopt;
+}
+
+#define FRAGMPM_INSTANTIATE_KIND(D, K)                                                                  \
+  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, false, false>(    \
+      StepState<D>&, double);                                                                           \
+  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, false, true>(     \
+      StepState<D>&, double);                                                                           \
+  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, true, false>(     \
+      StepState<D>&, double);                                                                           \
+  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, true, true>(      \
+      StepState<D>&, double);
+#define FRAGMPM_INSTANTIATE(D)        \
+  FRAGMPM_INSTANTIATE_KIND(D, linear) \
+  FRAGMPM_INSTANTIATE_KIND(D, ugimp)  \
+  FRAGMPM_INSTANTIATE_KIND(D, cpdi)
+FRAGMPM_INSTANTIATE(2)
+FRAGMPM_INSTANTIATE(3)
+#undef FRAGMPM_INSTANTIATE
+#undef FRAGMPM_INSTANTIATE_KIND
+
+}  // namespace fragmpm::mpm

@@ -1,0 +1,57 @@
+#pragma once
+// The two ways the stages visit particles with their stencils: scatter loops (strip by strip in two
+// parity passes, race-free and summing in a thread-independent order, see ScatterOrder) and
+// gather loops (any order; each particle writes only itself).
+#include <cstdint>
+
+#include "step/step_state.hpp"
+
+namespace fragmpm::mpm {
+
+template <int D, ShapeFunctionKind Kind>
+inline void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<D>& grid, Stencil<D>& s) {
+  if constexpr (Kind == ShapeFunctionKind::linear) linear_stencil<D>(P.x[p], grid, s);
+  else if constexpr (Kind == ShapeFunctionKind::ugimp)
+    ugimp_stencil<D>(P.x[p], 0.5 * P.domain[p].diagonal().cwiseAbs(), grid, s);
+  else cpdi_stencil<D>(P.x[p], P.domain[p], grid, s);
+}
+
+/// Runs body(p, stencil) over the particles p with keep(p), strip by strip in two parity passes, so
+/// that bodies scattering into the stencil's nodes never race. No stencil is built for the others.
+template <int D, ShapeFunctionKind Kind, class Keep, class Body>
+void scatter_particles_where(const StepState<D>& state, Keep&& keep, Body&& body) {
+  const ScatterOrder& order = state.order;
+  const std::int64_t strips = static_cast<std::int64_t>(order.strip_start.size()) - 1;
+#pragma omp parallel
+  {
+    Stencil<D> s;
+    for (std::int64_t parity = 0; parity < 2; ++parity) {
+      // The implicit barrier at the end of the loop separates the two parities.
+#pragma omp for schedule(dynamic, 1)
+      for (std::int64_t strip = parity; strip < strips; strip += 2) {
+        for (std::int64_t k = order.strip_start[strip]; k < order.strip_start[strip + 1]; ++k) {
+          const std::int64_t p = order.strip_order[k];
+          if (!keep(p)) continue;
+          fill_stencil<D, Kind>(state.problem.particles, p, state.grid, s);
+          body(p, s);
+        }
+      }
+    }
+  }
+}
+
+template <int D, ShapeFunctionKind Kind, class Body>
+void scatter_particles(const StepState<D>& state, Body&& body) {
+  scatter_particles_where<D, Kind>(state, [](std::int64_t) { return true; }, body);
+}
+
+/// Field of entry e of particle p's stencil this step (0 unless the step is partitioned).
+template <int D, bool Partitioned>
+inline int field_at(const StepState<D>& state, std::int64_t p, int e) {
+  if constexpr (Partitioned)
+    return state.partition.field_map[static_cast<std::size_t>(p) * Stencil<D>::capacity +
+                                     static_cast<std::size_t>(e)];
+  else return 0;
+}
+
+}  // namespace fragmpm::mpm

@@ -1,0 +1,57 @@
+#pragma once
+// The stages of one explicit step, in the order solver.cpp calls them. Each is defined in the file
+// of its name in this folder and instantiated there for D = 2, 3 and every shape function.
+#include <optional>
+
+#include "fragmpm/mpm/solver.hpp"
+#include "step/step_state.hpp"
+
+namespace fragmpm::mpm {
+
+/// Active region = nodes touched by any particle's stencil plus one node of padding; fails when a
+/// particle left the computational domain. (active_region.cpp)
+template <int D>
+std::optional<NumericalFailure> update_active_region(StepState<D>& state);
+/// Sizes the node arrays of this step's fields and zeroes the sums. (active_region.cpp)
+template <int D>
+void size_grid(StepState<D>& state);
+/// Counting sort of particles into scatter strips (stable: index order within a strip).
+template <int D>
+void bin_particles_into_strips(StepState<D>& state);
+/// f_p of this step's traction loads. (active_region.cpp)
+template <int D>
+void update_load_forces(StepState<D>& state);
+
+/// d̂_p and the kernel damage field with its gradient ([HH17] eq. (17)-(19)); sets
+/// partition.this_step. (damage_field_stage.cpp)
+template <int D>
+void update_damage_field(StepState<D>& state);
+/// Nodal damage gradient, band sides and the field map of this step ([HH17] Alg. 1-2). (partition.cpp)
+template <int D, ShapeFunctionKind Kind>
+void partition_nodes(StepState<D>& state);
+
+/// P2G ([XLS21] eq. (47)-(49)) into the fields of the field map. (scatter.cpp)
+template <int D, ShapeFunctionKind Kind, bool Partitioned>
+void scatter_to_grid(StepState<D>& state);
+/// Lumped and updated nodal velocities. (grid_update.cpp)
+template <int D>
+void update_grid_velocities(StepState<D>& state, double dt);
+/// Two-field nodes: move as one or exchange momentum through the contact law. (contact_nodes.cpp)
+template <int D>
+void exchange_contact_momentum(StepState<D>& state, double dt);
+/// Rigid walls on their candidate nodes. (walls.cpp)
+template <int D>
+void apply_walls(StepState<D>& state, double dt);
+
+/// Nodal capacities and temperatures θⁿ, before the grid update. (thermal_stage.cpp)
+template <int D, ShapeFunctionKind Kind, bool Partitioned>
+void thermal_begin(StepState<D>& state);
+/// Heat loads, nodal rates and particle temperatures θⁿ⁺¹, after contact and walls. (thermal_stage.cpp)
+template <int D, ShapeFunctionKind Kind, bool Partitioned>
+void thermal_finish(StepState<D>& state, double dt);
+
+/// G2P ([XLS21] eq. (64)-(66)) and the constitutive update that closes the step. (g2p.cpp)
+template <int D, ShapeFunctionKind Kind, bool Partitioned, bool Thermal>
+std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt);
+
+}  // namespace fragmpm::mpm

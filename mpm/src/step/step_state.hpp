@@ -1,0 +1,137 @@
+#pragma once
+// The state one explicit step works on: the problem with its particles, the active grid and its
+// per-field node arrays, the partition and contact sums, and the energy accumulators. Every stage
+// (one file each in this folder) is a free function over a StepState; solver.cpp owns one and
+// calls the stages in the order of the step.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "fragmpm/mpm/damage_field.hpp"
+#include "fragmpm/mpm/grid_index.hpp"
+#include "fragmpm/mpm/neo_hookean.hpp"
+#include "fragmpm/mpm/problem.hpp"
+#include "fragmpm/mpm/series.hpp"
+#include "fragmpm/mpm/shape_functions.hpp"
+#include "step/thermal_state.hpp"
+
+namespace fragmpm::mpm {
+
+/// Which stages the step runs; fixed at setup from the scene (plan_modules logs the reasons).
+struct StepPlan {
+  bool partitioned = false;         ///< two velocity fields per node may exist
+  bool by_bodies = false;           ///< the fields are the bodies, always separable
+  bool damage = false;              ///< some material has a damage law
+  bool needs_contact_area = false;  ///< adhesion or contact conductance scale with the contact area
+  bool gap_test = false;            ///< position test of contact ([NBS18] eq. (8))
+  bool principal_rule = false;      ///< nodal gradient = principal direction of the gradient tensor
+};
+
+/// Per node and field (field 1 exists only when the step is partitioned).
+template <int D>
+struct NodeFields {
+  std::array<std::vector<double>, 2> mass;
+  std::array<std::vector<Vec<D>>, 2> momentum, force;
+  std::array<std::vector<Vec<D>>, 2> velocity_lumped;  ///< p_i / m_i before the grid update
+  std::array<std::vector<Vec<D>>, 2> velocity;         ///< after the grid update, contact and walls
+};
+
+/// Race-free, thread-count-independent scatter: particles binned into strips along direction 0
+/// wider than twice any stencil's reach, so strips of equal parity never share a node. Even strips
+/// scatter in parallel, then odd ones; within a strip particles go in index order, so every node
+/// sums its contributions in the same order whatever the number of threads.
+struct ScatterOrder {
+  std::int64_t strip_width = 3;      ///< cells per strip
+  double largest_half_extent = 0.0;  ///< largest stencil half-extent along direction 0 [cells]
+  std::vector<std::int64_t> strip_start, strip_order, strip_of, strip_cursor;
+};
+
+/// Damage-field-gradient partitioning ([HH17] §2.1-2.3, Alg. 1-2); allocated only when partitioned.
+template <int D>
+struct PartitionState {
+  bool this_step = false;  ///< some particle has d̂ > 0 (or the fields are bodies)
+  NeighbourLists<D> neighbours;
+  std::vector<double> particle_dhat, particle_field;  ///< d̂_p = max(s_p, d_p), D̄(x_p)
+  std::vector<Vec<D>> particle_gradient;              ///< ∇D̄(x_p) ([HH17] eq. (17)-(19))
+  std::vector<Vec<D>> node_gradient;                  ///< nonlocal nodal ∇D̄_i ([HH17] Alg. 1)
+  std::vector<Mat<D>> node_gradient_tensor;           ///< Σ_p ∇D̄_p ⊗ ∇D̄_p (principal rule only)
+  /// For the junction rule of field_of: the largest damage d mapping to the node, and per field the
+  /// sums Σ S̄ d̂_p x_p and Σ S̄ d̂_p over the band particles whose gradient decides their field there.
+  std::vector<double> node_damage_max;
+  std::array<std::vector<Vec<D>>, 2> node_side_moment;
+  std::array<std::vector<double>, 2> node_side_weight;
+  /// The field of every particle-node pair of this step, decided once by the partition stage:
+  /// entry p · Stencil<D>::capacity + e is the field of particle p at its stencil entry e.
+  std::vector<std::uint8_t> field_map;
+};
+
+/// Sums at nodes that can hold two fields (the nodes with a nodal damage gradient), and what the
+/// contact stage books there.
+template <int D>
+struct ContactSums {
+  std::array<std::vector<Vec<D>>, 2> mass_gradient;    ///< Σ m_p ∇S̄_ip per field ([XLS21] eq. (74))
+  std::array<std::vector<double>, 2> dhat;             ///< Σ S̄ m_p d̂_p per field ([XLS21] eq. (70))
+  std::array<std::vector<Vec<D>>, 2> volume_gradient;  ///< Σ V_p ∇S̄_ip per field (contact area)
+  std::array<std::vector<Vec<D>>, 2> position;         ///< Σ S̄ m_p x_p per field ([NBS18] eq. (8))
+  std::vector<double> dhat_max;                        ///< largest d̂ mapping to the node
+  std::vector<std::int64_t> two_field_nodes;
+  std::vector<double> friction_work, normal_impulse, area;  ///< per two-field node
+  long long nodes_in_contact = 0;
+};
+
+/// Scratch of the wall stage: one entry per candidate node of the wall being applied.
+template <int D>
+struct WallScratch {
+  std::vector<std::int64_t> nodes;
+  std::vector<Vec<D>> impulse;
+  std::vector<double> work, friction;
+};
+
+template <int D>
+struct StepState {
+  Problem<D> problem;
+  StepPlan plan;
+  std::vector<NeoHookean> models;
+  std::vector<char> material_damages;
+  double time = 0.0;
+  long long step = 0;
+  EnergyAccumulators totals;
+  SeriesRow<D> row;
+  double next_dt_limit = 0.0;  ///< CFL limit from the state after the last step (C_cfl included)
+  double negligible_mass = 0.0;
+  double kernel_radius = 0.0;  ///< r_p of the damage field = cell diagonal ([HH17] §2.2) [m]
+
+  GridIndex<D> grid;
+  NodeFields<D> nodes;
+  ScatterOrder order;
+  PartitionState<D> partition;
+  ContactSums<D> contact;
+  WallScratch<D> wall_scratch;
+  std::vector<Vec<D>> load_force;  ///< f_p of this step [N per unit thickness in 2D]
+  std::vector<double> momentum_parts;  ///< per-thread momentum sums of G2P, D per thread
+  /// ψ_t per particle from the last constitutive update (thermal and damage only): the damage
+  /// heat of the next thermal stage is booked from it.
+  std::vector<double> degradable;
+  std::unique_ptr<ThermalState<D>> thermal;  ///< exists only when the scene needs it
+
+  int fields() const { return partition.this_step ? 2 : 1; }
+  std::size_t node_count() const { return nodes.mass[0].size(); }
+};
+
+/// Sets v to n copies of value without giving memory back; grows with 25 % headroom, so an active
+/// region that creeps by a few nodes does not reallocate every step.
+template <class T>
+void reset_array(std::vector<T>& v, std::size_t n, const T& value) {
+  if (v.capacity() < n) v.reserve(n + n / 4);
+  v.assign(n, value);
+}
+
+/// The same without initialising (every entry is written before it is read).
+template <class T>
+void size_array(std::vector<T>& v, std::size_t n) {
+  if (v.capacity() < n) v.reserve(n + n / 4);
+  v.resize(n);
+}
+
+}  // namespace fragmpm::mpm
