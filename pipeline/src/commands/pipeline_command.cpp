@@ -35,7 +35,7 @@
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/segment.hpp"
 #include "fragmpm/pipeline/segment_preview.hpp"
-#include "scene_grains.hpp"
+#include "scene/scene_grains.hpp"
 
 namespace fragmpm::pipeline {
 
