@@ -27,14 +27,6 @@ namespace {
 
 using namespace run_file_detail;
 
-constexpr const char* kModuleSeparator = " \u2014 ";  // "name: on — reason"
-
-std::string frame_name(int index) {
-  char buffer[16];
-  std::snprintf(buffer, sizeof buffer, "%06d", index);
-  return buffer;
-}
-
 // ---- /meta
 
 std::string module_lines(const std::vector<ModuleDecision>& modules) {
@@ -47,38 +39,6 @@ std::string module_lines(const std::vector<ModuleDecision>& modules) {
     text += '\n';
   }
   return text;
-}
-
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    const std::size_t end = text.find('\n', start);
-    lines.push_back(text.substr(start, end - start));
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return lines;
-}
-
-std::vector<ModuleDecision> parse_modules(const h5::Group& meta) {
-  std::vector<ModuleDecision> modules;
-  for (const std::string& line : split_lines(meta.attribute_string("modules"))) {
-    const std::size_t colon = line.find(": ");
-    ModuleDecision m;
-    m.module = line.substr(0, colon);
-    std::string rest = colon == std::string::npos ? "" : line.substr(colon + 2);
-    const std::size_t separator = rest.find(kModuleSeparator);
-    const std::string state = rest.substr(0, separator);
-    if (colon == std::string::npos || (state != "on" && state != "off"))
-      throw RunFileError(meta.describe("attribute 'modules': line '" + line +
-                                       "' is not 'name: on|off — reason'"));
-    m.active = state == "on";
-    if (separator != std::string::npos)
-      m.reason = rest.substr(separator + std::string(kModuleSeparator).size());
-    modules.push_back(std::move(m));
-  }
-  return modules;
 }
 
 // ---- /series columns: name, units, how to read the value from a row
@@ -128,13 +88,7 @@ std::string wall_displacement_name(const std::string& wall) { return "wall_" + w
 
 template <int D>
 struct RunFile<D>::Impl {
-  struct Frame {
-    int index = 0;
-    long long step = 0;
-    double time = 0.0;
-    std::size_t points = 0;
-    std::vector<std::string> fields;  ///< in the order of all_frame_fields()
-  };
+  using Frame = FrameEntry;
 
   h5::File file;
   std::string path;
@@ -200,24 +154,7 @@ struct RunFile<D>::Impl {
   }
 
   /// Rebuilds the frame list from the file (when opening an existing run).
-  void scan_frames() {
-    frames.clear();
-    const h5::Group group = root().open_group("frames");
-    for (const std::string& name : group.children()) {
-      if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; }))
-        continue;
-      const h5::Group g = group.open_group(name);
-      Frame frame;
-      frame.index = std::stoi(name);
-      frame.step = g.attribute_int64("step");
-      frame.time = g.attribute_double("time");
-      frame.points = g.open_dataset("x").rows();
-      for (const std::string& field : all_frame_fields())
-        if (g.exists(field)) frame.fields.push_back(field);
-      frames.push_back(std::move(frame));
-    }
-    std::sort(frames.begin(), frames.end(), [](const Frame& a, const Frame& b) { return a.index < b.index; });
-  }
+  void scan_frames() { frames = run_file_detail::scan_frames(root().open_group("frames")); }
 };
 
 template <int D>
@@ -309,13 +246,7 @@ RunFile<D> RunFile<D>::open_existing(const std::string& path) {
 
 template <int D>
 RunMeta RunFile<D>::meta() const {
-  const h5::Group m = impl_->root().open_group("meta");
-  RunMeta meta;
-  meta.scene_path = m.attribute_string("scene_path");
-  meta.scene_text = m.attribute_string("scene_text");
-  meta.modules = parse_modules(m);
-  meta.wall_names = split_lines(m.attribute_string("wall_names"));
-  return meta;
+  return read_meta(impl_->root().open_group("meta"));
 }
 
 template <int D>
@@ -489,15 +420,7 @@ int RunFile<D>::frame_count() const {
 
 template <int D>
 Particles<D> RunFile<D>::read_frame(int index, double* time, long long* step) const {
-  const h5::Group frames = impl_->root().open_group("frames");
-  const std::string name = frame_name(index);
-  if (index < 0 || !frames.is_group(name))
-    throw RunFileError(impl_->path + ": /frames/" + name + ": no such frame (the file has " +
-                       std::to_string(impl_->frames.size()) + " frames)");
-  const h5::Group g = frames.open_group(name);
-  if (time) *time = g.attribute_double("time");
-  if (step) *step = g.attribute_int64("step");
-  return read_particle_datasets<D>(g);
+  return read_frame_group<D>(impl_->root(), impl_->path, index, impl_->frames.size(), time, step);
 }
 
 template <int D>
@@ -520,14 +443,6 @@ Particles<D> read_particle_datasets(const h5::Group& g) {
   if (g.exists("material")) p.material = read_shaped<std::int32_t>(g, "material", {n});
   if (g.exists("temperature")) p.temperature = read_shaped<double>(g, "temperature", {n});
   return p;
-}
-
-std::vector<double> read_series(const std::string& path, const std::string& name) {
-  const h5::File file = h5::File::open(path, false);
-  const h5::Group root = file.root();
-  if (!root.is_dataset("series/" + name))
-    throw RunFileError(path + ": /series/" + name + ": no such series");
-  return root.read<double>("series/" + name).values;
 }
 
 template <int D>
