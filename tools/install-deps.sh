@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libhdf5-dev hdf5-tools libopencv-dev libcgal-dev libosmesa6-dev
-  libgtest-dev libtomlplusplus-dev libcli11-dev libfmt-dev libomp-dev
+  libgtest-dev libtomlplusplus-dev libcli11-dev libfmt-dev libomp-dev libxdmf-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -122,11 +122,44 @@ struct RunFile<D>::Impl {
 
   const h5::Dataset& series_dataset(const std::string& name) const { return series.at(name); }
 
+  /// 2D runs: the group of the 3-component copies of frame `index`'s vectors and tensors that the
+  /// XDMF file points at (see xdmf.hpp).
+  static std::string padded_group(int index) { return "xdmf/frames/" + frame_name(index); }
+
+  /// Writes the padded copies a 2D frame lacks (all of them for a new frame or a run file written
+  /// before they existed); returns true when it wrote any.
+  bool write_padded_copies(const Frame& frame) const {
+    if (D != 2) return false;
+    bool wrote = false;
+    const h5::Group r = root();
+    for (const std::string& name : frame.fields) {
+      const FieldInfo info = field_info<D>(name);
+      if (name == "x" || info.kind == XdmfField::Kind::scalar) continue;
+      const std::string target = padded_group(frame.index);
+      if (r.exists(target + "/" + name)) continue;
+      write_padded_copy(r.open_group("frames/" + frame_name(frame.index)), r.require_group(target), name, info.kind,
+                        name == "F" ? 1.0 : 0.0);
+      wrote = true;
+    }
+    return wrote;
+  }
+
+  /// Removes frame `index` and its padded copies.
+  void remove_frame(int index) const {
+    const h5::Group r = root();
+    if (r.exists("frames/" + frame_name(index))) r.remove("frames/" + frame_name(index));
+    if (r.exists(padded_group(index))) r.remove(padded_group(index));
+  }
+
   /// Writes /xdmf/point_ids = 0 … N−1 for the largest frame (connectivity for the XDMF Polyvertex
-  /// topology; see xdmf.hpp), then the .xmf file.
+  /// topology; see xdmf.hpp) and the padded copies of 2D frames, then the .xmf file.
   void rewrite_xdmf() const {
     std::size_t largest = 0;
-    for (const Frame& frame : frames) largest = std::max(largest, frame.points);
+    bool wrote = false;
+    for (const Frame& frame : frames) {
+      largest = std::max(largest, frame.points);
+      wrote = write_padded_copies(frame) || wrote;
+    }
     const h5::Group r = root();
     std::size_t ids = r.is_dataset("xdmf/point_ids") ? r.open_dataset("xdmf/point_ids").rows() : 0;
     if (ids < largest) {
@@ -135,8 +168,9 @@ struct RunFile<D>::Impl {
       r.write("xdmf/point_ids", values, {largest})
           .set_attribute("description", "0 ... N-1: point connectivity for the XDMF file beside this one");
       ids = largest;
-      file.flush();  // the .xmf must never point at data that is not on disk yet
+      wrote = true;
     }
+    if (wrote) file.flush();  // the .xmf must never point at data that is not on disk yet
     std::vector<XdmfFrame> light;
     for (const Frame& frame : frames) {
       XdmfFrame f;
@@ -146,7 +180,8 @@ struct RunFile<D>::Impl {
       for (const std::string& name : frame.fields) {
         if (name == "x") continue;  // the geometry
         const FieldInfo info = field_info<D>(name);
-        f.fields.push_back({name, info.kind, info.number});
+        const bool padded = D == 2 && info.kind != XdmfField::Kind::scalar;
+        f.fields.push_back({name, info.kind, info.number, padded ? "/" + padded_group(frame.index) + "/" + name : ""});
       }
       light.push_back(std::move(f));
     }
@@ -265,7 +300,7 @@ int RunFile<D>::write_frame(long long step, double time, const Particles<D>& par
   const int index = impl_->frames.empty() ? 0 : impl_->frames.back().index + 1;
   const std::string name = frame_name(index);
   const h5::Group frames = impl_->root().open_group("frames");
-  if (frames.exists(name)) frames.remove(name);
+  impl_->remove_frame(index);
   const h5::Group g = frames.require_group(name);
   g.set_attribute("time", time);
   g.set_attribute("step", static_cast<std::int64_t>(step));
@@ -385,11 +420,9 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
 
 template <int D>
 void RunFile<D>::truncate_after(long long step) {
-  const h5::Group root = impl_->root();
-  const h5::Group frames = root.open_group("frames");
   auto& list = impl_->frames;
   for (const auto& f : list)
-    if (f.step > step) frames.remove(frame_name(f.index));
+    if (f.step > step) impl_->remove_frame(f.index);
   list.erase(std::remove_if(list.begin(), list.end(), [&](const auto& f) { return f.step > step; }),
              list.end());
 
