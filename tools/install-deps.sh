@@ -4,7 +4,8 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   libeigen3-dev libhdf5-dev hdf5-tools libopencv-dev libcgal-dev libosmesa6-dev
-  libgtest-dev libtomlplusplus-dev libcli11-dev libfmt-dev libomp-dev libxdmf-dev
+  libgtest-dev libtomlplusplus-dev libcli11-dev libfmt-dev libomp-dev
+  libxdmf-dev libxml2-dev libboost-dev
 )
 missing=()
 for p in "${packages[@]}"; do

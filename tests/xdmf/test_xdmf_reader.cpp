@@ -110,18 +110,20 @@ void check_xmf(const std::string& path, const std::vector<Written>& frames, cons
       if (g + 1 != frames.size()) continue;
       // The values of the last frame, component by component.
       for (std::size_t p = 0; p < n; ++p) {
-        if (name == "v")
-          for (int i = 0; i < 3; ++i)
-            EXPECT_EQ(attribute->getValue<double>(3 * p + i), i < D ? last.v[p](i) : 0.0);
-        if (name == "F" || name == "stress")
+        if (name == "v") {
+          for (int i = 0; i < 3; ++i) EXPECT_EQ(attribute->getValue<double>(3 * p + i), i < D ? last.v[p](i) : 0.0);
+        } else if (name == "F" || name == "stress") {
+          const Mat<D>& m = name == "F" ? last.F[p] : last.stress[p];
           for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) {
-              const Mat<D>& m = name == "F" ? last.F[p] : last.stress[p];
               const double pad = i == 2 && j == 2 && name == "F" ? 1.0 : 0.0;
               EXPECT_EQ(attribute->getValue<double>(9 * p + 3 * i + j), i < D && j < D ? m(i, j) : pad);
             }
-        if (name == "damage") EXPECT_EQ(attribute->getValue<double>(p), last.damage[p]);
-        if (name == "body") EXPECT_EQ(attribute->getValue<int>(p), last.body[p]);
+        } else if (name == "damage") {
+          EXPECT_EQ(attribute->getValue<double>(p), last.damage[p]);
+        } else if (name == "body") {
+          EXPECT_EQ(attribute->getValue<int>(p), last.body[p]);
+        }
       }
     }
   }
