@@ -155,6 +155,44 @@ void write_figures(const AnalyzeResult& r, std::vector<std::string>& files, std:
   }
 }
 
+mpm::RunFileReader open_run(const std::string& path) {
+  try {
+    return mpm::RunFileReader::open(path);
+  } catch (const mpm::NotARunFile& e) {
+    throw AnalyzeError(e.what());
+  } catch (const mpm::RunFileError& e) {
+    throw AnalyzeError(fmt::format("{}: not a FragMPM run file ({})", path, e.what()));
+  }
+}
+
+/// The CSV tables of the analysed frames and the count / size series; their paths go to result.files.
+void write_tables(AnalyzeResult& result) {
+  const fs::path dir(result.output_dir);
+  for (const AnalyzedFrame& f : result.frames) {
+    const std::string n = fmt::format("{:06d}", f.frame);
+    const bool theta = f.fragments.has_temperature;
+    const std::string files[] = {(dir / ("fragments_" + n + ".csv")).string(), (dir / ("fines_" + n + ".csv")).string(),
+                                 (dir / ("cdf_equivalent_diameter_" + n + ".csv")).string(),
+                                 (dir / ("cdf_roundness_" + n + ".csv")).string()};
+    try {
+      analysis::write_fragment_csv(files[0], f.fragments.fragments, theta);
+      analysis::write_fragment_csv(files[1], f.fragments.fines, theta);
+      analysis::write_cdf_csv(files[2], f.fragments.equivalent_diameter, "equivalent_diameter_m");
+      analysis::write_cdf_csv(files[3], f.fragments.roundness, "roundness");
+    } catch (const std::runtime_error& e) {
+      throw AnalyzeError(e.what());
+    }
+    for (const std::string& file : files) result.files.push_back(file);
+  }
+  const std::string series_csv = (dir / "fragment_series.csv").string();
+  try {
+    analysis::write_fragment_series_csv(series_csv, result.series, !result.platen.empty());
+  } catch (const std::runtime_error& e) {
+    throw AnalyzeError(e.what());
+  }
+  result.files.push_back(series_csv);
+}
+
 }  // namespace
 
 AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
@@ -175,15 +213,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
     result.output_dir = (p.parent_path() / (p.stem().string() + "_fragments")).string();
   }
   {
-    const mpm::RunFileReader file = [&] {
-      try {
-        return mpm::RunFileReader::open(path);
-      } catch (const mpm::NotARunFile& e) {
-        throw AnalyzeError(e.what());
-      } catch (const mpm::RunFileError& e) {
-        throw AnalyzeError(fmt::format("{}: not a FragMPM run file ({})", path, e.what()));
-      }
-    }();
+    const mpm::RunFileReader file = open_run(path);
     const RunIndex run = read_run_index(file);
     const mpm::RunSeries series = file.read_series(platen_series(run));
     std::vector<std::string> moving;
@@ -248,31 +278,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
     }
   }
 
-  // Tables.
-  const fs::path dir(result.output_dir);
-  for (const AnalyzedFrame& f : result.frames) {
-    const std::string n = fmt::format("{:06d}", f.frame);
-    const bool theta = f.fragments.has_temperature;
-    const std::string files[] = {(dir / ("fragments_" + n + ".csv")).string(), (dir / ("fines_" + n + ".csv")).string(),
-                                 (dir / ("cdf_equivalent_diameter_" + n + ".csv")).string(),
-                                 (dir / ("cdf_roundness_" + n + ".csv")).string()};
-    try {
-      analysis::write_fragment_csv(files[0], f.fragments.fragments, theta);
-      analysis::write_fragment_csv(files[1], f.fragments.fines, theta);
-      analysis::write_cdf_csv(files[2], f.fragments.equivalent_diameter, "equivalent_diameter_m");
-      analysis::write_cdf_csv(files[3], f.fragments.roundness, "roundness");
-    } catch (const std::runtime_error& e) {
-      throw AnalyzeError(e.what());
-    }
-    for (const std::string& file : files) result.files.push_back(file);
-  }
-  const std::string series_csv = (dir / "fragment_series.csv").string();
-  try {
-    analysis::write_fragment_series_csv(series_csv, result.series, !result.platen.empty());
-  } catch (const std::runtime_error& e) {
-    throw AnalyzeError(e.what());
-  }
-  result.files.push_back(series_csv);
+  write_tables(result);
   say(log, fmt::format("  tables ({} frames) and the count / size series over {} frames -> {}", result.frames.size(),
                        result.series.size(), result.output_dir));
   if (o.figures) {
