@@ -75,36 +75,33 @@ void close_csv(std::ofstream& out, const std::string& path) {
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
-void write_table(const mpm::h5::Group& g, std::span<const FragmentStatistics> rows, bool temperature) {
+/// The table's columns as run-file datasets, named PREFIX/<column>.
+void add_table(std::vector<mpm::TableColumn>& out, const std::string& prefix, std::span<const FragmentStatistics> rows,
+               bool temperature) {
   const std::size_t n = rows.size();
   for (std::size_t k = 0; k < column_count(temperature); ++k) {
     const FragmentColumn& c = fragment_columns()[k];
-    mpm::h5::Dataset ds = [&] {
-      if (k <= 1) {  // integer columns
-        std::vector<std::int64_t> v(n);
-        for (std::size_t r = 0; r < n; ++r) v[r] = static_cast<std::int64_t>(column_value(rows[r], k));
-        return g.write(c.name, v, {n});
-      }
+    mpm::TableColumn column{prefix + "/" + c.name, c.units, c.description, {}};
+    if (k <= 1) {  // integer columns
+      std::vector<std::int64_t> v(n);
+      for (std::size_t r = 0; r < n; ++r) v[r] = static_cast<std::int64_t>(column_value(rows[r], k));
+      column.values = std::move(v);
+    } else {
       std::vector<double> v(n);
       for (std::size_t r = 0; r < n; ++r) v[r] = column_value(rows[r], k);
-      return g.write(c.name, v, {n});
-    }();
-    ds.set_attribute("units", c.units);
-    ds.set_attribute("description", c.description);
+      column.values = std::move(v);
+    }
+    out.push_back(std::move(column));
   }
 }
 
-void write_cdf(const mpm::h5::Group& g, const EmpiricalCdf& cdf, const char* units, const char* what) {
-  const std::size_t n = cdf.value.size();
-  auto value = g.write("value", cdf.value, {n});
-  value.set_attribute("units", units);
-  value.set_attribute("description", fmt::format("{} of the resolved fragments, ascending", what));
-  auto number = g.write("number_fraction", cdf.number_fraction, {n});
-  number.set_attribute("units", "1");
-  number.set_attribute("description", fmt::format("fraction of fragments with {} <= value", what));
-  auto mass = g.write("mass_fraction", cdf.mass_fraction, {n});
-  mass.set_attribute("units", "1");
-  mass.set_attribute("description", fmt::format("fraction of fragment mass in fragments with {} <= value", what));
+void add_cdf(std::vector<mpm::TableColumn>& out, const std::string& prefix, const EmpiricalCdf& cdf, const char* units,
+             const char* what) {
+  out.push_back({prefix + "/value", units, fmt::format("{} of the resolved fragments, ascending", what), cdf.value});
+  out.push_back({prefix + "/number_fraction", "1", fmt::format("fraction of fragments with {} <= value", what),
+                 cdf.number_fraction});
+  out.push_back({prefix + "/mass_fraction", "1",
+                 fmt::format("fraction of fragment mass in fragments with {} <= value", what), cdf.mass_fraction});
 }
 
 struct SeriesColumn {
@@ -172,24 +169,24 @@ void write_fragment_series_csv(const std::string& path, std::span<const Fragment
   close_csv(out, path);
 }
 
-void write_fragment_series_datasets(const mpm::h5::Group& group, std::span<const FragmentSeriesPoint> points,
-                                    bool platen) {
+std::vector<mpm::TableColumn> fragment_series_datasets(std::span<const FragmentSeriesPoint> points, bool platen) {
   const std::size_t n = points.size();
+  std::vector<mpm::TableColumn> out;
   for (const SeriesColumn& c : series_columns()) {
     if (!platen && std::string(c.name) == "platen_displacement") continue;
-    mpm::h5::Dataset ds = [&] {
-      if (c.integer) {
-        std::vector<std::int64_t> v(n);
-        for (std::size_t k = 0; k < n; ++k) v[k] = static_cast<std::int64_t>(c.value(points[k]));
-        return group.write(c.name, v, {n});
-      }
+    mpm::TableColumn column{c.name, c.units, c.description, {}};
+    if (c.integer) {
+      std::vector<std::int64_t> v(n);
+      for (std::size_t k = 0; k < n; ++k) v[k] = static_cast<std::int64_t>(c.value(points[k]));
+      column.values = std::move(v);
+    } else {
       std::vector<double> v(n);
       for (std::size_t k = 0; k < n; ++k) v[k] = c.value(points[k]);
-      return group.write(c.name, v, {n});
-    }();
-    ds.set_attribute("units", c.units);
-    ds.set_attribute("description", c.description);
+      column.values = std::move(v);
+    }
+    out.push_back(std::move(column));
   }
+  return out;
 }
 
 void write_fragment_csv(const std::string& path, std::span<const FragmentStatistics> rows, bool temperature) {
@@ -216,15 +213,15 @@ void write_cdf_csv(const std::string& path, const EmpiricalCdf& cdf, const std::
   close_csv(out, path);
 }
 
-void write_fragment_datasets(const mpm::h5::Group& group, const FrameFragments& frame) {
-  write_table(group.require_group("table"), frame.fragments, frame.has_temperature);
-  write_table(group.require_group("fines"), frame.fines, frame.has_temperature);
-  const std::size_t n = frame.labels.fragment.size();
-  auto ids = group.write("particle_fragment", frame.labels.fragment, {n});
-  ids.set_attribute("units", "1");
-  ids.set_attribute("description", "fragment id of each particle (table/id or fines/id), -1 = masked (d >= d_mask)");
-  write_cdf(group.require_group("cdf/equivalent_diameter"), frame.equivalent_diameter, "m", "equivalent diameter");
-  write_cdf(group.require_group("cdf/roundness"), frame.roundness, "1", "roundness");
+std::vector<mpm::TableColumn> fragment_frame_datasets(const FrameFragments& frame) {
+  std::vector<mpm::TableColumn> out;
+  add_table(out, "table", frame.fragments, frame.has_temperature);
+  add_table(out, "fines", frame.fines, frame.has_temperature);
+  out.push_back({"particle_fragment", "1",
+                 "fragment id of each particle (table/id or fines/id), -1 = masked (d >= d_mask)", frame.labels.fragment});
+  add_cdf(out, "cdf/equivalent_diameter", frame.equivalent_diameter, "m", "equivalent diameter");
+  add_cdf(out, "cdf/roundness", frame.roundness, "1", "roundness");
+  return out;
 }
 
 }  // namespace fragmpm::analysis

@@ -9,7 +9,7 @@
 
 #include "fragmpm/analysis/figure_error.hpp"
 #include "fragmpm/analysis/si_format.hpp"
-#include "fragmpm/mpm/run_file.hpp"
+#include "fragmpm/mpm/run_file_reader.hpp"
 
 namespace fragmpm::analysis {
 
@@ -65,10 +65,10 @@ struct WindowMeans {
 };
 
 /// Window means for a long run; nullopt for a short one (every step plotted) or a run without Δt.
-std::optional<WindowMeans> window_means(const std::string& run_path, std::size_t rows) {
+std::optional<WindowMeans> window_means(const mpm::RunSeries& run, std::size_t rows) {
   if (rows <= max_plotted_rows) return std::nullopt;
-  const std::vector<double> time = mpm::read_series(run_path, "time");
-  const std::vector<double> dt = mpm::read_series(run_path, "dt");
+  const std::vector<double>& time = run.column("time");
+  const std::vector<double>& dt = run.column("dt");
   if (time.size() != rows || dt.size() != rows) return std::nullopt;
   const double t0 = time.front() - dt.front(), span = time.back() - t0;
   if (!(span > 0)) return std::nullopt;
@@ -84,8 +84,9 @@ std::optional<WindowMeans> window_means(const std::string& run_path, std::size_t
 
 }  // namespace
 
-PlotSpec energy_plot_spec(const std::string& run_path) {
-  const std::vector<double> time = mpm::read_series(run_path, "time");
+PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
+  const std::string& run_path = run.source;
+  const std::vector<double>& time = run.column("time");
   if (time.empty()) throw FigureError(run_path + ": /series has no rows yet (no step was recorded)");
   PlotSpec spec;
   spec.title = "Energy balance";
@@ -96,7 +97,7 @@ PlotSpec energy_plot_spec(const std::string& run_path) {
     LineSeries s;
     s.label = label;
     s.x = time;
-    s.y = mpm::read_series(run_path, name);
+    s.y = run.column(name);
     if (s.y.size() != time.size())
       throw FigureError(fmt::format("{}: /series/{} has {} rows but /series/time has {}", run_path, name,
                                     s.y.size(), time.size()));
@@ -107,22 +108,23 @@ PlotSpec energy_plot_spec(const std::string& run_path) {
   return spec;
 }
 
-PlotSpec force_displacement_spec(const std::string& run_path, const std::vector<std::string>& wall_names) {
+PlotSpec force_displacement_spec(const mpm::RunSeries& run, const std::vector<std::string>& wall_names) {
+  const std::string& run_path = run.source;
   if (wall_names.empty()) throw FigureError(run_path + ": the run has no walls, so no force-displacement curve");
   std::vector<std::vector<double>> force, travel;
   for (const std::string& w : wall_names) {
-    force.push_back(row_norms(mpm::read_series(run_path, "wall_" + w + "_force")));
-    travel.push_back(row_norms(mpm::read_series(run_path, "wall_" + w + "_displacement")));
+    force.push_back(row_norms(run.column(mpm::RunSeries::wall_force(w))));
+    travel.push_back(row_norms(run.column(mpm::RunSeries::wall_displacement(w))));
     if (force.back().size() != travel.back().size())
       throw FigureError(fmt::format("{}: wall '{}' has {} force rows but {} displacement rows", run_path, w,
                                     force.back().size(), travel.back().size()));
   }
   if (force.front().empty()) throw FigureError(run_path + ": /series has no rows yet (no step was recorded)");
   std::string averaged;
-  if (const std::optional<WindowMeans> means = window_means(run_path, force.front().size())) {
+  if (const std::optional<WindowMeans> means = window_means(run, force.front().size())) {
     for (auto& f : force) f = (*means)(f);
     for (auto& u : travel) u = (*means)(u);
-    const std::vector<double> time = mpm::read_series(run_path, "time");
+    const std::vector<double>& time = run.column("time");
     averaged = fmt::format(" (means over {} windows)",
                            format_si((time.back() - time.front()) / static_cast<double>(plotted_windows), "s", 2));
   }
@@ -136,8 +138,8 @@ PlotSpec force_displacement_spec(const std::string& run_path, const std::vector<
   if (farthest == 0.0) {
     // No wall moves (an impact on a fixed wall): a force-displacement curve would be a vertical line,
     // so the reactions are shown against time instead.
-    std::vector<double> time = mpm::read_series(run_path, "time");
-    if (!averaged.empty()) time = window_means(run_path, time.size()).value()(time);
+    std::vector<double> time = run.column("time");
+    if (!averaged.empty()) time = window_means(run, time.size()).value()(time);
     spec.title = "Wall reaction forces (no wall moves)" + averaged;
     for (std::size_t i = 0; i < wall_names.size(); ++i) {
       if (force[i].size() != time.size())
@@ -161,6 +163,14 @@ PlotSpec force_displacement_spec(const std::string& run_path, const std::vector<
   spec.x_label = fmt::format("wall displacement |u| [{}]", rescale(spec.series, true, "m"));
   spec.y_label = fmt::format("reaction force |F| [{}]", rescale(spec.series, false, "N/m"));
   return spec;
+}
+
+PlotSpec energy_plot_spec(const std::string& run_path) {
+  return energy_plot_spec(mpm::RunFileReader::open(run_path).read_series());
+}
+
+PlotSpec force_displacement_spec(const std::string& run_path, const std::vector<std::string>& wall_names) {
+  return force_displacement_spec(mpm::RunFileReader::open(run_path).read_series(), wall_names);
 }
 
 }  // namespace fragmpm::analysis

@@ -27,14 +27,6 @@ namespace {
 
 using namespace run_file_detail;
 
-constexpr const char* kModuleSeparator = " \u2014 ";  // "name: on — reason"
-
-std::string frame_name(int index) {
-  char buffer[16];
-  std::snprintf(buffer, sizeof buffer, "%06d", index);
-  return buffer;
-}
-
 // ---- /meta
 
 std::string module_lines(const std::vector<ModuleDecision>& modules) {
@@ -47,38 +39,6 @@ std::string module_lines(const std::vector<ModuleDecision>& modules) {
     text += '\n';
   }
   return text;
-}
-
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    const std::size_t end = text.find('\n', start);
-    lines.push_back(text.substr(start, end - start));
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return lines;
-}
-
-std::vector<ModuleDecision> parse_modules(const h5::Group& meta) {
-  std::vector<ModuleDecision> modules;
-  for (const std::string& line : split_lines(meta.attribute_string("modules"))) {
-    const std::size_t colon = line.find(": ");
-    ModuleDecision m;
-    m.module = line.substr(0, colon);
-    std::string rest = colon == std::string::npos ? "" : line.substr(colon + 2);
-    const std::size_t separator = rest.find(kModuleSeparator);
-    const std::string state = rest.substr(0, separator);
-    if (colon == std::string::npos || (state != "on" && state != "off"))
-      throw RunFileError(meta.describe("attribute 'modules': line '" + line +
-                                       "' is not 'name: on|off — reason'"));
-    m.active = state == "on";
-    if (separator != std::string::npos)
-      m.reason = rest.substr(separator + std::string(kModuleSeparator).size());
-    modules.push_back(std::move(m));
-  }
-  return modules;
 }
 
 // ---- /series columns: name, units, how to read the value from a row
@@ -128,13 +88,7 @@ std::string wall_displacement_name(const std::string& wall) { return "wall_" + w
 
 template <int D>
 struct RunFile<D>::Impl {
-  struct Frame {
-    int index = 0;
-    long long step = 0;
-    double time = 0.0;
-    std::size_t points = 0;
-    std::vector<std::string> fields;  ///< in the order of all_frame_fields()
-  };
+  using Frame = FrameEntry;
 
   h5::File file;
   std::string path;
@@ -168,11 +122,44 @@ struct RunFile<D>::Impl {
 
   const h5::Dataset& series_dataset(const std::string& name) const { return series.at(name); }
 
+  /// 2D runs: the group of the 3-component copies of frame `index`'s vectors and tensors that the
+  /// XDMF file points at (see xdmf.hpp).
+  static std::string padded_group(int index) { return "xdmf/frames/" + frame_name(index); }
+
+  /// Writes the padded copies a 2D frame lacks (all of them for a new frame or a run file written
+  /// before they existed); returns true when it wrote any.
+  bool write_padded_copies(const Frame& frame) const {
+    if (D != 2) return false;
+    bool wrote = false;
+    const h5::Group r = root();
+    for (const std::string& name : frame.fields) {
+      const FieldInfo info = field_info<D>(name);
+      if (name == "x" || info.kind == XdmfField::Kind::scalar) continue;
+      const std::string target = padded_group(frame.index);
+      if (r.exists(target + "/" + name)) continue;
+      write_padded_copy(r.open_group("frames/" + frame_name(frame.index)), r.require_group(target), name, info.kind,
+                        name == "F" ? 1.0 : 0.0);
+      wrote = true;
+    }
+    return wrote;
+  }
+
+  /// Removes frame `index` and its padded copies.
+  void remove_frame(int index) const {
+    const h5::Group r = root();
+    if (r.exists("frames/" + frame_name(index))) r.remove("frames/" + frame_name(index));
+    if (r.exists(padded_group(index))) r.remove(padded_group(index));
+  }
+
   /// Writes /xdmf/point_ids = 0 … N−1 for the largest frame (connectivity for the XDMF Polyvertex
-  /// topology; see xdmf.hpp), then the .xmf file.
+  /// topology; see xdmf.hpp) and the padded copies of 2D frames, then the .xmf file.
   void rewrite_xdmf() const {
     std::size_t largest = 0;
-    for (const Frame& frame : frames) largest = std::max(largest, frame.points);
+    bool wrote = false;
+    for (const Frame& frame : frames) {
+      largest = std::max(largest, frame.points);
+      wrote = write_padded_copies(frame) || wrote;
+    }
     const h5::Group r = root();
     std::size_t ids = r.is_dataset("xdmf/point_ids") ? r.open_dataset("xdmf/point_ids").rows() : 0;
     if (ids < largest) {
@@ -181,8 +168,9 @@ struct RunFile<D>::Impl {
       r.write("xdmf/point_ids", values, {largest})
           .set_attribute("description", "0 ... N-1: point connectivity for the XDMF file beside this one");
       ids = largest;
-      file.flush();  // the .xmf must never point at data that is not on disk yet
+      wrote = true;
     }
+    if (wrote) file.flush();  // the .xmf must never point at data that is not on disk yet
     std::vector<XdmfFrame> light;
     for (const Frame& frame : frames) {
       XdmfFrame f;
@@ -192,7 +180,8 @@ struct RunFile<D>::Impl {
       for (const std::string& name : frame.fields) {
         if (name == "x") continue;  // the geometry
         const FieldInfo info = field_info<D>(name);
-        f.fields.push_back({name, info.kind, info.number});
+        const bool padded = D == 2 && info.kind != XdmfField::Kind::scalar;
+        f.fields.push_back({name, info.kind, info.number, padded ? "/" + padded_group(frame.index) + "/" + name : ""});
       }
       light.push_back(std::move(f));
     }
@@ -200,24 +189,7 @@ struct RunFile<D>::Impl {
   }
 
   /// Rebuilds the frame list from the file (when opening an existing run).
-  void scan_frames() {
-    frames.clear();
-    const h5::Group group = root().open_group("frames");
-    for (const std::string& name : group.children()) {
-      if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; }))
-        continue;
-      const h5::Group g = group.open_group(name);
-      Frame frame;
-      frame.index = std::stoi(name);
-      frame.step = g.attribute_int64("step");
-      frame.time = g.attribute_double("time");
-      frame.points = g.open_dataset("x").rows();
-      for (const std::string& field : all_frame_fields())
-        if (g.exists(field)) frame.fields.push_back(field);
-      frames.push_back(std::move(frame));
-    }
-    std::sort(frames.begin(), frames.end(), [](const Frame& a, const Frame& b) { return a.index < b.index; });
-  }
+  void scan_frames() { frames = run_file_detail::scan_frames(root().open_group("frames")); }
 };
 
 template <int D>
@@ -309,13 +281,7 @@ RunFile<D> RunFile<D>::open_existing(const std::string& path) {
 
 template <int D>
 RunMeta RunFile<D>::meta() const {
-  const h5::Group m = impl_->root().open_group("meta");
-  RunMeta meta;
-  meta.scene_path = m.attribute_string("scene_path");
-  meta.scene_text = m.attribute_string("scene_text");
-  meta.modules = parse_modules(m);
-  meta.wall_names = split_lines(m.attribute_string("wall_names"));
-  return meta;
+  return read_meta(impl_->root().open_group("meta"));
 }
 
 template <int D>
@@ -334,7 +300,7 @@ int RunFile<D>::write_frame(long long step, double time, const Particles<D>& par
   const int index = impl_->frames.empty() ? 0 : impl_->frames.back().index + 1;
   const std::string name = frame_name(index);
   const h5::Group frames = impl_->root().open_group("frames");
-  if (frames.exists(name)) frames.remove(name);
+  impl_->remove_frame(index);
   const h5::Group g = frames.require_group(name);
   g.set_attribute("time", time);
   g.set_attribute("step", static_cast<std::int64_t>(step));
@@ -454,11 +420,9 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
 
 template <int D>
 void RunFile<D>::truncate_after(long long step) {
-  const h5::Group root = impl_->root();
-  const h5::Group frames = root.open_group("frames");
   auto& list = impl_->frames;
   for (const auto& f : list)
-    if (f.step > step) frames.remove(frame_name(f.index));
+    if (f.step > step) impl_->remove_frame(f.index);
   list.erase(std::remove_if(list.begin(), list.end(), [&](const auto& f) { return f.step > step; }),
              list.end());
 
@@ -489,15 +453,7 @@ int RunFile<D>::frame_count() const {
 
 template <int D>
 Particles<D> RunFile<D>::read_frame(int index, double* time, long long* step) const {
-  const h5::Group frames = impl_->root().open_group("frames");
-  const std::string name = frame_name(index);
-  if (index < 0 || !frames.is_group(name))
-    throw RunFileError(impl_->path + ": /frames/" + name + ": no such frame (the file has " +
-                       std::to_string(impl_->frames.size()) + " frames)");
-  const h5::Group g = frames.open_group(name);
-  if (time) *time = g.attribute_double("time");
-  if (step) *step = g.attribute_int64("step");
-  return read_particle_datasets<D>(g);
+  return read_frame_group<D>(impl_->root(), impl_->path, index, impl_->frames.size(), time, step);
 }
 
 template <int D>
@@ -520,14 +476,6 @@ Particles<D> read_particle_datasets(const h5::Group& g) {
   if (g.exists("material")) p.material = read_shaped<std::int32_t>(g, "material", {n});
   if (g.exists("temperature")) p.temperature = read_shaped<double>(g, "temperature", {n});
   return p;
-}
-
-std::vector<double> read_series(const std::string& path, const std::string& name) {
-  const h5::File file = h5::File::open(path, false);
-  const h5::Group root = file.root();
-  if (!root.is_dataset("series/" + name))
-    throw RunFileError(path + ": /series/" + name + ": no such series");
-  return root.read<double>("series/" + name).values;
 }
 
 template <int D>

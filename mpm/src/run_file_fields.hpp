@@ -1,14 +1,35 @@
 #pragma once
 // How particle arrays map to run-file datasets (DESIGN §5): units, shapes and the copies between
-// Eigen arrays of small matrices and row-major HDF5 buffers. Private to run_file.cpp.
+// Eigen arrays of small matrices and row-major HDF5 buffers, and the layout code the writer
+// (run_file.cpp) and the reader (run_file_reader.cpp) share. Private to mpm/src.
 #include <string>
 #include <vector>
 
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/mpm/particles.hpp"
+#include "fragmpm/mpm/run_file.hpp"
+#include "fragmpm/mpm/run_file_reader.hpp"
 #include "fragmpm/mpm/xdmf.hpp"
 
 namespace fragmpm::mpm::run_file_detail {
+
+// ---- layout shared by RunFile and RunFileReader (run_file_reader.cpp)
+
+/// Between a module's state and its reason in /meta modules: "name: on — reason".
+inline constexpr const char* kModuleSeparator = " \u2014 ";
+
+/// "000012": the name of frame 12 under /frames.
+std::string frame_name(int index);
+/// Lines of a newline-separated attribute (a trailing newline ends the last line).
+std::vector<std::string> split_lines(const std::string& text);
+/// The frame list of a /frames group (children named by digits only), sorted by index.
+std::vector<FrameEntry> scan_frames(const h5::Group& frames);
+/// /meta of a run file (every attribute RunFile::create writes must be there).
+RunMeta read_meta(const h5::Group& meta);
+/// Reads /frames/NNNNNN of `root`; RunFileError naming PATH and the group when it does not exist.
+template <int D>
+Particles<D> read_frame_group(const h5::Group& root, const std::string& path, int index,
+                              std::size_t frame_count, double* time, long long* step);
 
 /// Units (and a hint on layout) of every dataset, for users' own scripts.
 struct FieldInfo {

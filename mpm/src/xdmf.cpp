@@ -1,6 +1,7 @@
 // XDMF 3 writer for particle frames; see xdmf.hpp.
 #include "fragmpm/mpm/xdmf.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -47,7 +48,50 @@ std::string data_item(const std::string& dims, XdmfField::Number number, const s
          " Format=\"HDF\">" + xml_escape(hdf_path) + "</DataItem>\n";
 }
 
+/// <Attribute> of one field; vectors are N × 3 and tensors N × 3 × 3 datasets (see xdmf.hpp).
+std::string attribute(const XdmfField& field, const std::string& n, const std::string& prefix,
+                      const std::string& h5_reference) {
+  const std::string hdf_path = field.dataset.empty() ? prefix + field.name : h5_reference + ":" + field.dataset;
+  const char* type = "Scalar";
+  std::string dims = n;
+  if (field.kind == XdmfField::Kind::vector) {
+    type = "Vector";
+    dims += " 3";
+  } else if (field.kind == XdmfField::Kind::tensor) {
+    type = "Tensor";
+    dims += " 3 3";
+  }
+  return "        <Attribute Name=\"" + xml_escape(field.name) + "\" AttributeType=\"" + type +
+         "\" Center=\"Node\">\n" + data_item(dims, field.number, hdf_path, "          ") + "        </Attribute>\n";
+}
+
 }  // namespace
+
+h5::Dataset write_padded_copy(const h5::Group& source, const h5::Group& target, const std::string& name,
+                              XdmfField::Kind kind, double zz) {
+  const h5::Array<double> in = source.read<double>(name);
+  const std::size_t n = in.dims.empty() ? 0 : in.dims[0];
+  const bool tensor = kind == XdmfField::Kind::tensor;
+  const h5::Dims expected = tensor ? h5::Dims{n, 2, 2} : h5::Dims{n, 2};
+  if (kind == XdmfField::Kind::scalar || in.dims != expected)
+    throw RunFileError(source.describe("dataset '" + name + "' is not a 2D " + (tensor ? "tensor" : "vector")));
+  std::vector<double> out(n * (tensor ? 9 : 3), 0.0);
+  for (std::size_t p = 0; p < n; ++p) {
+    if (tensor) {
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) out[p * 9 + 3 * i + j] = in.values[p * 4 + 2 * i + j];
+      out[p * 9 + 8] = zz;
+    } else {
+      out[p * 3] = in.values[p * 2];
+      out[p * 3 + 1] = in.values[p * 2 + 1];
+    }
+  }
+  h5::Dataset ds = target.write(name, out, tensor ? h5::Dims{n, 3, 3} : h5::Dims{n, 3});
+  const h5::Dataset original = source.open_dataset(name);
+  for (const char* a : {"units", "description"})
+    if (original.has_attribute(a)) ds.set_attribute(a, original.attribute_string(a));
+  return ds;
+}
 
 void write_xdmf(const std::string& xmf_path, const std::string& h5_reference, int dimension,
                 const std::vector<XdmfFrame>& frames, const std::string& point_ids,
@@ -87,24 +131,11 @@ void write_xdmf(const std::string& xmf_path, const std::string& h5_reference, in
         << "        <Geometry GeometryType=\"" << (dimension == 2 ? "XY" : "XYZ") << "\">\n"
         << data_item(n + " " + d, XdmfField::Number::float64, prefix + frame.geometry, "          ")
         << "        </Geometry>\n";
-    for (const XdmfField& field : frame.fields) {
-      const std::string hdf_path = prefix + field.name;
-      const char* type = "Scalar";
-      std::string dims = n;
-      if (field.kind == XdmfField::Kind::vector) {
-        type = "Vector";
-        dims += " " + d;
-      } else if (field.kind == XdmfField::Kind::tensor) {
-        // The readers know only 3×3 tensors; a 2×2 one is a Matrix, which ParaView's Xdmf3 reader
-        // shows as one 4-component array (xx, xy, yx, yy). Hyperslab components are not an option:
-        // the XDMF 3 library applies multi-dimensional hyperslabs in Fortran order.
-        type = dimension == 3 ? "Tensor" : "Matrix";
-        dims += " " + d + " " + d;
-      }
-      out << "        <Attribute Name=\"" << xml_escape(field.name) << "\" AttributeType=\"" << type
-          << "\" Center=\"Node\">\n"
-          << data_item(dims, field.number, hdf_path, "          ") << "        </Attribute>\n";
-    }
+    // damage first: ParaView colours a newly opened file by its first point array.
+    std::vector<const XdmfField*> fields;
+    for (const XdmfField& field : frame.fields) fields.push_back(&field);
+    std::stable_partition(fields.begin(), fields.end(), [](const XdmfField* f) { return f->name == "damage"; });
+    for (const XdmfField* field : fields) out << attribute(*field, n, prefix, h5_reference);
     out << "      </Grid>\n";
   }
   out << "    </Grid>\n  </Domain>\n</Xdmf>\n";

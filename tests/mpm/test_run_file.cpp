@@ -386,10 +386,12 @@ TEST(RunFile, XdmfDescribesEveryFrame) {
     EXPECT_NE(text.find(name + ":/frames/" + std::string(frame) + "/x"), std::string::npos) << frame;
   EXPECT_EQ(count(text, "<Time "), 3u);
   EXPECT_EQ(count(text, "GeometryType=\"XY\""), 3u);
-  EXPECT_EQ(count(text, "Dimensions=\"6 2\""), 3u * 4u);  // x, v, r1, r2
+  EXPECT_EQ(count(text, "Dimensions=\"6 2\""), 3u);       // x
+  EXPECT_EQ(count(text, "Dimensions=\"6 3\""), 3u * 3u);  // v, r1, r2 padded to 3 components
   EXPECT_EQ(count(text, name + ":/xdmf/point_ids"), 3u);  // Polyvertex connectivity
-  EXPECT_EQ(count(text, "Name=\"F\" AttributeType=\"Matrix\""), 3u);
-  EXPECT_EQ(count(text, "Dimensions=\"6 2 2\""), 3u * 2u);  // F, stress
+  EXPECT_EQ(count(text, "Name=\"F\" AttributeType=\"Tensor\""), 3u);
+  EXPECT_EQ(count(text, "Dimensions=\"6 3 3\""), 3u * 2u);  // F, stress padded to 3 x 3
+  EXPECT_EQ(count(text, name + ":/xdmf/frames/000001/stress"), 1u);
   EXPECT_EQ(count(text, "Name=\"temperature\""), 3u);
   EXPECT_EQ(count(text, "<Attribute "), 3u * (3u + 2u + 7u));  // vectors, tensors, scalars
 

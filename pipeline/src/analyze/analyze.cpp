@@ -14,7 +14,8 @@
 #include "fragmpm/analysis/figure_error.hpp"
 #include "fragmpm/analysis/fragment_figures.hpp"
 #include "fragmpm/analysis/si_format.hpp"
-#include "fragmpm/mpm/hdf5_io.hpp"
+#include "fragmpm/mpm/run_file_fragments.hpp"
+#include "fragmpm/mpm/run_file_reader.hpp"
 
 namespace fragmpm::pipeline {
 
@@ -51,70 +52,70 @@ std::string describe(const analysis::FrameFragments& r) {
 
 /// The /fragments/ groups this analysis will write that exist already: fine (and listed) when an
 /// earlier analyze wrote them, refused otherwise.
-std::vector<std::string> groups_to_replace(const mpm::h5::File& file, const std::string& path,
-                                           const std::vector<std::string>& names) {
+/// `names` are relative to /fragments ("000002", "series").
+std::vector<std::string> groups_to_replace(const mpm::RunFileReader& file, const std::vector<std::string>& names) {
   std::vector<std::string> replace;
-  const mpm::h5::Group root = file.root();
   for (const std::string& name : names) {
-    if (!root.exists(name)) continue;
-    if (!root.is_group(name) || !root.open_group(name).has_attribute("written_by") ||
-        root.open_group(name).attribute_string("written_by") != kWrittenBy)
-      throw AnalyzeError(fmt::format("{}: /{} exists and was not written by fragmpm analyze; refusing to replace "
-                                     "it (use --csv-only to leave the run file alone)",
-                                     path, name));
-    replace.push_back(name);
+    const mpm::RunFileReader::GroupState state = file.fragment_group(name);
+    if (!state.exists) continue;
+    if (!state.is_group || state.written_by != kWrittenBy)
+      throw AnalyzeError(fmt::format("{}: /fragments/{} exists and was not written by fragmpm analyze; refusing to "
+                                     "replace it (use --csv-only to leave the run file alone)",
+                                     file.path(), name));
+    replace.push_back("fragments/" + name);
   }
   return replace;
 }
 
-void set_options(const mpm::h5::Group& g, const analysis::FragmentOptions& o) {
-  g.set_attribute("written_by", kWrittenBy);
-  g.set_attribute("d_mask", o.d_mask);
-  g.set_attribute("min_particles", static_cast<std::int64_t>(o.min_particles));
-  g.set_attribute("reference_reach", o.reference_reach);
-  g.set_attribute("current_reach", o.current_reach);
+void set_options(mpm::TableGroup& g, const analysis::FragmentOptions& o) {
+  g.attributes.push_back({"written_by", std::string(kWrittenBy)});
+  g.attributes.push_back({"d_mask", o.d_mask});
+  g.attributes.push_back({"min_particles", static_cast<std::int64_t>(o.min_particles)});
+  g.attributes.push_back({"reference_reach", o.reference_reach});
+  g.attributes.push_back({"current_reach", o.current_reach});
+}
+
+mpm::TableGroup frame_group_table(const AnalyzeOptions& o, const AnalyzeResult& r, const AnalyzedFrame& f) {
+  mpm::TableGroup g;
+  set_options(g, o.fragments);
+  auto attribute = [&](const char* name, mpm::TableAttribute value) { g.attributes.push_back({name, std::move(value)}); };
+  attribute("frame", static_cast<std::int64_t>(f.frame));
+  attribute("time", f.time);
+  attribute("step", static_cast<std::int64_t>(f.step));
+  attribute("request", f.request);
+  if (!r.platen.empty()) {
+    attribute("platen", r.platen);
+    attribute("platen_displacement", f.platen_displacement);
+  }
+  const analysis::FragmentSummary& s = f.fragments.summary;
+  attribute("fragments", static_cast<std::int64_t>(s.fragments));
+  attribute("fines", static_cast<std::int64_t>(s.fines));
+  attribute("fine_particles", static_cast<std::int64_t>(s.fine_particles));
+  attribute("masked_particles", static_cast<std::int64_t>(s.masked_particles));
+  attribute("fines_mass", s.fines_mass);
+  attribute("fines_area", s.fines_area);
+  attribute("raster_check", f.fragments.raster_checked ? f.fragments.raster.summary()
+                                                       : "skipped: " + f.fragments.raster_note);
+  g.columns = analysis::fragment_frame_datasets(f.fragments);
+  return g;
 }
 
 void write_run_groups(const AnalyzeOptions& o, const AnalyzeResult& r) {
-  mpm::h5::File file = [&] {
+  const mpm::FragmentGroupWriter file = [&] {
     try {
-      return mpm::h5::File::open(o.run_path, true);
+      return mpm::FragmentGroupWriter::open(o.run_path);
     } catch (const mpm::RunFileError& e) {
       throw AnalyzeError(fmt::format("cannot write the fragment tables into the run file ({}); the CSV files are "
                                      "written; use --csv-only to skip the run file",
                                      e.what()));
     }
   }();
-  const mpm::h5::Group root = file.root();
-  for (const AnalyzedFrame& f : r.frames) {
-    const std::string name = fmt::format("fragments/{:06d}", f.frame);
-    if (root.exists(name)) root.remove(name);
-    const mpm::h5::Group g = root.require_group(name);
-    set_options(g, o.fragments);
-    g.set_attribute("frame", static_cast<std::int64_t>(f.frame));
-    g.set_attribute("time", f.time);
-    g.set_attribute("step", static_cast<std::int64_t>(f.step));
-    g.set_attribute("request", f.request);
-    if (!r.platen.empty()) {
-      g.set_attribute("platen", r.platen);
-      g.set_attribute("platen_displacement", f.platen_displacement);
-    }
-    const analysis::FragmentSummary& s = f.fragments.summary;
-    g.set_attribute("fragments", static_cast<std::int64_t>(s.fragments));
-    g.set_attribute("fines", static_cast<std::int64_t>(s.fines));
-    g.set_attribute("fine_particles", static_cast<std::int64_t>(s.fine_particles));
-    g.set_attribute("masked_particles", static_cast<std::int64_t>(s.masked_particles));
-    g.set_attribute("fines_mass", s.fines_mass);
-    g.set_attribute("fines_area", s.fines_area);
-    g.set_attribute("raster_check", f.fragments.raster_checked ? f.fragments.raster.summary()
-                                                               : "skipped: " + f.fragments.raster_note);
-    analysis::write_fragment_datasets(g, f.fragments);
-  }
-  if (root.exists("fragments/series")) root.remove("fragments/series");
-  const mpm::h5::Group series = root.require_group("fragments/series");
+  for (const AnalyzedFrame& f : r.frames) file.replace(fmt::format("{:06d}", f.frame), frame_group_table(o, r, f));
+  mpm::TableGroup series;
   set_options(series, o.fragments);
-  if (!r.platen.empty()) series.set_attribute("platen", r.platen);
-  analysis::write_fragment_series_datasets(series, r.series, !r.platen.empty());
+  if (!r.platen.empty()) series.attributes.push_back({"platen", r.platen});
+  series.columns = analysis::fragment_series_datasets(r.series, !r.platen.empty());
+  file.replace("series", series);
   file.flush();
 }
 
@@ -154,6 +155,44 @@ void write_figures(const AnalyzeResult& r, std::vector<std::string>& files, std:
   }
 }
 
+mpm::RunFileReader open_run(const std::string& path) {
+  try {
+    return mpm::RunFileReader::open(path);
+  } catch (const mpm::NotARunFile& e) {
+    throw AnalyzeError(e.what());
+  } catch (const mpm::RunFileError& e) {
+    throw AnalyzeError(fmt::format("{}: not a FragMPM run file ({})", path, e.what()));
+  }
+}
+
+/// The CSV tables of the analysed frames and the count / size series; their paths go to result.files.
+void write_tables(AnalyzeResult& result) {
+  const fs::path dir(result.output_dir);
+  for (const AnalyzedFrame& f : result.frames) {
+    const std::string n = fmt::format("{:06d}", f.frame);
+    const bool theta = f.fragments.has_temperature;
+    const std::string files[] = {(dir / ("fragments_" + n + ".csv")).string(), (dir / ("fines_" + n + ".csv")).string(),
+                                 (dir / ("cdf_equivalent_diameter_" + n + ".csv")).string(),
+                                 (dir / ("cdf_roundness_" + n + ".csv")).string()};
+    try {
+      analysis::write_fragment_csv(files[0], f.fragments.fragments, theta);
+      analysis::write_fragment_csv(files[1], f.fragments.fines, theta);
+      analysis::write_cdf_csv(files[2], f.fragments.equivalent_diameter, "equivalent_diameter_m");
+      analysis::write_cdf_csv(files[3], f.fragments.roundness, "roundness");
+    } catch (const std::runtime_error& e) {
+      throw AnalyzeError(e.what());
+    }
+    for (const std::string& file : files) result.files.push_back(file);
+  }
+  const std::string series_csv = (dir / "fragment_series.csv").string();
+  try {
+    analysis::write_fragment_series_csv(series_csv, result.series, !result.platen.empty());
+  } catch (const std::runtime_error& e) {
+    throw AnalyzeError(e.what());
+  }
+  result.files.push_back(series_csv);
+}
+
 }  // namespace
 
 AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
@@ -174,24 +213,19 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
     result.output_dir = (p.parent_path() / (p.stem().string() + "_fragments")).string();
   }
   {
-    mpm::h5::File file = [&] {
-      try {
-        return mpm::h5::File::open(path, false);
-      } catch (const mpm::RunFileError& e) {
-        throw AnalyzeError(fmt::format("{}: not a FragMPM run file ({})", path, e.what()));
-      }
-    }();
-    const RunIndex run = read_run_index(file, path);
+    const mpm::RunFileReader file = open_run(path);
+    const RunIndex run = read_run_index(file);
+    const mpm::RunSeries series = file.read_series(platen_series(run));
     std::vector<std::string> moving;
-    result.platen = choose_platen(file, run, o.platen, moving);
+    result.platen = choose_platen(series, run, o.platen, moving);
     const std::vector<double> travel = result.platen.empty() ? std::vector<double>{}
-                                                             : platen_travel(file, run, result.platen);
+                                                             : platen_travel(series, run, result.platen);
     const std::vector<Selected> selection = select_frames(o, run, travel, moving);
 
     if (o.write_run_file) {
-      std::vector<std::string> names{"fragments/series"};
-      for (const Selected& s : selection) names.push_back(fmt::format("fragments/{:06d}", run.frames[s.position].index));
-      for (const std::string& name : groups_to_replace(file, path, names)) result.replaced_groups.push_back("/" + name);
+      std::vector<std::string> names{"series"};
+      for (const Selected& s : selection) names.push_back(fmt::format("{:06d}", run.frames[s.position].index));
+      for (const std::string& name : groups_to_replace(file, names)) result.replaced_groups.push_back("/" + name);
     }
     fs::create_directories(result.output_dir, ec);
     if (ec || !fs::is_directory(result.output_dir))
@@ -244,31 +278,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
     }
   }
 
-  // Tables.
-  const fs::path dir(result.output_dir);
-  for (const AnalyzedFrame& f : result.frames) {
-    const std::string n = fmt::format("{:06d}", f.frame);
-    const bool theta = f.fragments.has_temperature;
-    const std::string files[] = {(dir / ("fragments_" + n + ".csv")).string(), (dir / ("fines_" + n + ".csv")).string(),
-                                 (dir / ("cdf_equivalent_diameter_" + n + ".csv")).string(),
-                                 (dir / ("cdf_roundness_" + n + ".csv")).string()};
-    try {
-      analysis::write_fragment_csv(files[0], f.fragments.fragments, theta);
-      analysis::write_fragment_csv(files[1], f.fragments.fines, theta);
-      analysis::write_cdf_csv(files[2], f.fragments.equivalent_diameter, "equivalent_diameter_m");
-      analysis::write_cdf_csv(files[3], f.fragments.roundness, "roundness");
-    } catch (const std::runtime_error& e) {
-      throw AnalyzeError(e.what());
-    }
-    for (const std::string& file : files) result.files.push_back(file);
-  }
-  const std::string series_csv = (dir / "fragment_series.csv").string();
-  try {
-    analysis::write_fragment_series_csv(series_csv, result.series, !result.platen.empty());
-  } catch (const std::runtime_error& e) {
-    throw AnalyzeError(e.what());
-  }
-  result.files.push_back(series_csv);
+  write_tables(result);
   say(log, fmt::format("  tables ({} frames) and the count / size series over {} frames -> {}", result.frames.size(),
                        result.series.size(), result.output_dir));
   if (o.figures) {

@@ -11,25 +11,11 @@
 #include <fmt/format.h>
 
 #include "fragmpm/analysis/si_format.hpp"
-#include "fragmpm/mpm/run_file.hpp"
 #include "fragmpm/pipeline/units.hpp"
 
 namespace fragmpm::pipeline::analyze_detail {
 
 namespace {
-
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    const std::size_t end = text.find('\n', start);
-    std::string line = text.substr(start, end - start);
-    if (!line.empty()) lines.push_back(line);
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return lines;
-}
 
 std::string list(const std::vector<std::string>& names) {
   return names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "));
@@ -71,53 +57,43 @@ bool is_bare_number(const std::string& text) {
 
 std::string frame_group(int index) { return fmt::format("/frames/{:06d}", index); }
 
-RunIndex read_run_index(const mpm::h5::File& file, const std::string& path) {
-  const mpm::h5::Group root = file.root();
-  for (const char* group : {"meta", "frames", "series"})
-    if (!root.is_group(group))
-      throw AnalyzeError(fmt::format("{}: not a FragMPM run file (no /{} group)", path, group));
-  const mpm::h5::Group meta = root.open_group("meta");
-  if (!meta.has_attribute("dimension"))
-    throw AnalyzeError(path + ": not a FragMPM run file (/meta has no 'dimension' attribute)");
-  const std::int64_t dimension = meta.attribute_int64("dimension");
-  if (dimension != 2)
-    throw AnalyzeError(fmt::format("{}: a {}D run; fragment analysis handles 2D runs", path, dimension));
+RunIndex read_run_index(const mpm::RunFileReader& file) {
+  const std::string& path = file.path();
+  if (file.dimension() != 2)
+    throw AnalyzeError(fmt::format("{}: a {}D run; fragment analysis handles 2D runs", path, file.dimension()));
   RunIndex run;
   run.path = path;
-  if (meta.has_attribute("wall_names")) run.walls = split_lines(meta.attribute_string("wall_names"));
-  const mpm::h5::Group frames = root.open_group("frames");
-  for (const std::string& name : frames.children()) {
-    if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      continue;
-    const mpm::h5::Group g = frames.open_group(name);
-    run.frames.push_back({std::stoi(name), static_cast<long long>(g.attribute_int64("step")),
-                          g.attribute_double("time")});
-  }
+  run.walls = file.wall_names();
+  run.frames = file.frames();
   if (run.frames.empty()) throw AnalyzeError(path + ": the run has no frames yet");
-  std::sort(run.frames.begin(), run.frames.end(), [](const FrameInfo& a, const FrameInfo& b) { return a.index < b.index; });
   return run;
 }
 
-mpm::Particles<2> read_analysis_frame(const mpm::h5::File& file, const RunIndex& run, int index) {
+mpm::Particles<2> read_analysis_frame(const mpm::RunFileReader& file, const RunIndex& run, int index) {
   const std::string name = frame_group(index);
-  const mpm::h5::Group g = file.root().open_group(name);
+  const mpm::FrameEntry* frame = file.find_frame(index);
   for (const char* field : {"damage", "volume0"})
-    if (!g.is_dataset(field))
+    if (frame && !frame->has(field))
       throw AnalyzeError(fmt::format(
           "{}: {} has no '{}' dataset: the run was written without {} data, so its fragments cannot be "
           "found (list \"{}\" in the scene's output fields and run it again)",
           run.path, name, field, field == std::string("damage") ? "damage" : "reference volume", field));
-  return mpm::read_particle_datasets<2>(g);
+  return file.read_frame<2>(index);
 }
 
-std::string choose_platen(const mpm::h5::File& file, const RunIndex& run, const std::string& requested,
+std::vector<std::string> platen_series(const RunIndex& run) {
+  std::vector<std::string> names{"time", "step"};
+  for (const std::string& w : run.walls) names.push_back(mpm::RunSeries::wall_displacement(w));
+  return names;
+}
+
+std::string choose_platen(const mpm::RunSeries& series, const RunIndex& run, const std::string& requested,
                           std::vector<std::string>& moving) {
   moving.clear();
-  const mpm::h5::Group series = file.root().open_group("series");
   for (const std::string& w : run.walls) {
-    const std::string name = "wall_" + w + "_displacement";
-    if (!series.is_dataset(name)) continue;
-    const auto u = series.read<double>(name).values;
+    const std::string name = mpm::RunSeries::wall_displacement(w);
+    if (!series.has(name)) continue;
+    const std::vector<double>& u = series.column(name);
     for (std::size_t k = 0; k + 1 < u.size(); k += 2)
       if (std::hypot(u[k], u[k + 1]) > 0.0) {
         moving.push_back(w);
@@ -133,14 +109,14 @@ std::string choose_platen(const mpm::h5::File& file, const RunIndex& run, const 
   return moving.size() == 1 ? moving.front() : std::string();
 }
 
-std::vector<double> platen_travel(const mpm::h5::File& file, const RunIndex& run, const std::string& wall) {
-  const mpm::h5::Group series = file.root().open_group("series");
-  const std::string name = "wall_" + wall + "_displacement";
-  if (!series.is_dataset(name) || !series.is_dataset("time") || !series.is_dataset("step"))
+std::vector<double> platen_travel(const mpm::RunSeries& series, const RunIndex& run, const std::string& wall) {
+  const std::string name = mpm::RunSeries::wall_displacement(wall);
+  if (!series.has(name) || !series.has("time") || !series.has("step"))
     throw AnalyzeError(fmt::format("{}: /series/{} (with /series/time and /series/step) is missing", run.path, name));
-  const auto u = series.read<double>(name).values;
-  const auto time = series.read<double>("time").values;
-  const auto step = series.read<std::int64_t>("step").values;
+  const std::vector<double>& u = series.column(name);
+  const std::vector<double>& time = series.column("time");
+  std::vector<std::int64_t> step;
+  for (const double s : series.column("step")) step.push_back(static_cast<std::int64_t>(s));
   const std::size_t rows = std::min({u.size() / 2, time.size(), step.size()});
   if (rows == 0) throw AnalyzeError(fmt::format("{}: /series/{} has no rows", run.path, name));
   std::vector<double> travel(rows);

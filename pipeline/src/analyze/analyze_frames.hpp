@@ -6,17 +6,13 @@
 #include <string>
 #include <vector>
 
-#include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/mpm/particles.hpp"
+#include "fragmpm/mpm/run_file_reader.hpp"
 #include "fragmpm/pipeline/analyze.hpp"
 
 namespace fragmpm::pipeline::analyze_detail {
 
-struct FrameInfo {
-  int index = 0;
-  long long step = 0;
-  double time = 0.0;
-};
+using FrameInfo = mpm::FrameEntry;
 
 struct RunIndex {
   std::string path;
@@ -27,21 +23,24 @@ struct RunIndex {
 /// "/frames/000012"
 std::string frame_group(int index);
 
-/// Checks that `file` is a 2D FragMPM run file with at least one frame and lists its frames and walls.
-RunIndex read_run_index(const mpm::h5::File& file, const std::string& path);
+/// Checks that `file` is a 2D run with at least one frame and lists its frames and walls.
+RunIndex read_run_index(const mpm::RunFileReader& file);
 
 /// Reads a frame; throws AnalyzeError when it lacks damage or volume0 (fragments need both).
-mpm::Particles<2> read_analysis_frame(const mpm::h5::File& file, const RunIndex& run, int index);
+mpm::Particles<2> read_analysis_frame(const mpm::RunFileReader& file, const RunIndex& run, int index);
+
+/// The /series columns choose_platen and platen_travel use: time, step and every wall's displacement.
+std::vector<std::string> platen_series(const RunIndex& run);
 
 /// The wall whose travel measures the platen displacement: `requested` when given (AnalyzeError
 /// when the run has no such wall), else the only wall that moves, else "" (none or ambiguous).
 /// `moving` lists the walls that move, for messages.
-std::string choose_platen(const mpm::h5::File& file, const RunIndex& run, const std::string& requested,
+std::string choose_platen(const mpm::RunSeries& series, const RunIndex& run, const std::string& requested,
                           std::vector<std::string>& moving);
 
 /// |u| of `wall` at every frame [m], from /series/wall_<wall>_displacement at the frame's step (or
 /// interpolated in time when that step has no row).
-std::vector<double> platen_travel(const mpm::h5::File& file, const RunIndex& run, const std::string& wall);
+std::vector<double> platen_travel(const mpm::RunSeries& series, const RunIndex& run, const std::string& wall);
 
 struct Selected {
   std::size_t position = 0;  ///< index into run.frames

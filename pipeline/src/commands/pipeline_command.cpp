@@ -28,6 +28,7 @@
 #include "fragmpm/analysis/series_figures.hpp"
 #include "fragmpm/analysis/si_format.hpp"
 #include "fragmpm/mpm/run_file.hpp"
+#include "fragmpm/mpm/run_file_reader.hpp"
 #include "fragmpm/pipeline/analyze.hpp"
 #include "fragmpm/pipeline/commands.hpp"
 #include "fragmpm/pipeline/pipeline_job.hpp"
@@ -304,10 +305,10 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
     }
   };
   {
-    const mpm::RunFile<2> file = mpm::RunFile<2>::open_existing(result.run_path);
-    const int last = file.frame_count() - 1;
+    const mpm::RunFileReader file = mpm::RunFileReader::open(result.run_path);
+    const int last = static_cast<int>(file.frames().size()) - 1;
     double time = 0.0;
-    const mpm::Particles<2> particles = file.read_frame(last, &time);
+    const mpm::Particles<2> particles = file.read_frame<2>(last, &time);
     const struct {
       analysis::FrameField field;
       const char* name;
@@ -322,7 +323,7 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
       });
     if (analyzed)
       for (const AnalyzedFrame& f : analyzed->frames) {
-        const mpm::Particles<2> current = f.frame == last ? particles : file.read_frame(f.frame);
+        const mpm::Particles<2> current = f.frame == last ? particles : file.read_frame<2>(f.frame);
         figure(fmt::format("fragments_{:06d}.png", f.frame), [&](const std::string& path) {
           analysis::write_particle_figure(
               analysis::fragment_figure(current, analysis::resolved_fragment_ids(f.fragments.labels), f.time,
@@ -331,11 +332,12 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
               path);
         });
       }
+    const mpm::RunSeries series = file.read_series();
     figure("energy.png", [&](const std::string& path) {
-      analysis::write_line_plot(analysis::energy_plot_spec(result.run_path), path);
+      analysis::write_line_plot(analysis::energy_plot_spec(series), path);
     });
     figure("force_displacement.png", [&](const std::string& path) {
-      analysis::write_line_plot(analysis::force_displacement_spec(result.run_path, file.meta().wall_names), path);
+      analysis::write_line_plot(analysis::force_displacement_spec(series, file.meta().wall_names), path);
     });
   }
   const double analysis_s = seconds_since(analysis_start);

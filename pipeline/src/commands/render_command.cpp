@@ -16,8 +16,7 @@
 #include "fragmpm/analysis/particle_figure.hpp"
 #include "fragmpm/analysis/plot.hpp"
 #include "fragmpm/analysis/series_figures.hpp"
-#include "fragmpm/mpm/hdf5_io.hpp"
-#include "fragmpm/mpm/run_file.hpp"
+#include "fragmpm/mpm/run_file_reader.hpp"
 #include "fragmpm/pipeline/commands.hpp"
 
 namespace fragmpm::pipeline {
@@ -73,12 +72,13 @@ std::vector<std::string> required_datasets(analysis::FrameField field) {
 
 constexpr const char* fragment_field = "fragment";
 
-void require_datasets(const mpm::h5::File& file, int index, const std::vector<std::string>& names,
+void require_datasets(const mpm::RunFileReader& file, int index, const std::vector<std::string>& names,
                       const RenderArguments& a) {
   char group[32];
   std::snprintf(group, sizeof group, "frames/%06d", index);
+  const mpm::FrameEntry* frame = file.find_frame(index);
   for (const std::string& name : names)
-    if (!file.root().is_dataset(std::string(group) + "/" + name))
+    if (!frame || !frame->has(name))
       throw RenderInputError(fmt::format("{}: /{}/{}: not stored in this frame, so the {} figure cannot be "
                                          "drawn (the scene's output fields decide what frames keep)",
                                          a.run, group, name, a.field));
@@ -94,16 +94,13 @@ void render_field(const RenderArguments& a) {
   long long step = 0;
   mpm::Particles<2> particles, reference;
   {
-    const mpm::RunFile<2> file = mpm::RunFile<2>::open_existing(a.run);
-    index = frame_index(a.frame, file.frame_count(), a.run);
-    {
-      const mpm::h5::File h5 = mpm::h5::File::open(a.run, false);
-      const std::vector<std::string> fragment_data{"r1", "r2", "damage", "body"};
-      require_datasets(h5, index, fragments ? fragment_data : required_datasets(field), a);
-      if (fragments) require_datasets(h5, 0, fragment_data, a);
-    }
-    particles = file.read_frame(index, &time, &step);
-    if (fragments) reference = index == 0 ? particles : file.read_frame(0);
+    const mpm::RunFileReader file = mpm::RunFileReader::open(a.run);
+    index = frame_index(a.frame, static_cast<int>(file.frames().size()), a.run);
+    const std::vector<std::string> fragment_data{"r1", "r2", "damage", "body"};
+    require_datasets(file, index, fragments ? fragment_data : required_datasets(field), a);
+    if (fragments) require_datasets(file, 0, fragment_data, a);
+    particles = file.read_frame<2>(index, &time, &step);
+    if (fragments) reference = index == 0 ? particles : file.read_frame<2>(0);
   }
   const std::string title = fmt::format("{} - frame {} (step {}) of {}", a.field, index, step,
                                         std::filesystem::path(a.run).filename().string());
@@ -130,14 +127,10 @@ void render_series(const RenderArguments& a) {
   analysis::PlotSpec spec;
   if (a.series == "energy") {
     if (!std::filesystem::exists(a.run)) throw RenderInputError(a.run + ": no such file");
-    spec = analysis::energy_plot_spec(a.run);
+    spec = analysis::energy_plot_spec(mpm::RunFileReader::open(a.run).read_series());
   } else if (a.series == "force-displacement") {
-    std::vector<std::string> walls;
-    {
-      const mpm::RunFile<2> file = mpm::RunFile<2>::open_existing(a.run);
-      walls = file.meta().wall_names;
-    }
-    spec = analysis::force_displacement_spec(a.run, walls);
+    const mpm::RunFileReader file = mpm::RunFileReader::open(a.run);
+    spec = analysis::force_displacement_spec(file.read_series(), file.meta().wall_names);
   } else {
     throw RenderInputError(fmt::format("--series '{}': expected energy or force-displacement", a.series));
   }

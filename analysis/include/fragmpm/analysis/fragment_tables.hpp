@@ -1,6 +1,7 @@
 #pragma once
-// Fragment tables on disk: CSV for spreadsheets and scripts, and datasets in the run file's
-// /fragments/NNNNNN/ group (DESIGN §5), every dataset with `units` and `description` attributes.
+// Fragment tables: CSV files for spreadsheets and scripts, and the datasets of the run file's
+// /fragments/NNNNNN/ group (DESIGN §5) as in-memory columns with `units` and `description`, which
+// mpm::FragmentGroupWriter stores.
 //
 // /fragments/NNNNNN/            attributes set by the caller (frame, time, step, options, …)
 //   table/<column>              one dataset per column of the resolved-fragment table (n)
@@ -16,7 +17,7 @@
 #include "fragmpm/analysis/distributions.hpp"
 #include "fragmpm/analysis/fragment_statistics.hpp"
 #include "fragmpm/analysis/frame_fragments.hpp"
-#include "fragmpm/mpm/hdf5_io.hpp"
+#include "fragmpm/mpm/run_file_fragments.hpp"
 
 namespace fragmpm::analysis {
 
@@ -53,11 +54,10 @@ void write_cdf_csv(const std::string& path, const EmpiricalCdf& cdf, const std::
 /// fragment and fines mass [kg/m]. The platen column appears when `platen` is true.
 void write_fragment_series_csv(const std::string& path, std::span<const FragmentSeriesPoint> points, bool platen);
 
-/// The same columns as datasets (with units and descriptions) in `group`.
-void write_fragment_series_datasets(const mpm::h5::Group& group, std::span<const FragmentSeriesPoint> points,
-                                    bool platen);
+/// The same columns as datasets (with units and descriptions) of /fragments/series.
+std::vector<mpm::TableColumn> fragment_series_datasets(std::span<const FragmentSeriesPoint> points, bool platen);
 
-/// Writes the datasets of the layout above into `group` (which the caller created and annotates).
-void write_fragment_datasets(const mpm::h5::Group& group, const FrameFragments& frame);
+/// The datasets of a /fragments/NNNNNN group in the layout above (the caller adds the attributes).
+std::vector<mpm::TableColumn> fragment_frame_datasets(const FrameFragments& frame);
 
 }  // namespace fragmpm::analysis

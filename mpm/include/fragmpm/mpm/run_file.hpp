@@ -8,6 +8,8 @@
 //                         gravity_work, balance_error, momentum (steps×D), step,
 //                         wall_<name>_force (steps×D), wall_<name>_displacement (steps×D)
 //   /checkpoint/          the full state for an exact restart
+//   /fragments/           tables of `fragmpm analyze` (run_file_fragments.hpp)
+// RunFile writes and continues a run; RunFileReader (run_file_reader.hpp) reads one, read-only.
 #include <memory>
 #include <optional>
 #include <stdexcept>
