@@ -6,8 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
+#include <optional>
+#include <map>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "fragmpm/mpm/solver.hpp"
@@ -66,7 +70,88 @@ mpm::Problem<2> bench_block(const std::string& scene, long long target_particles
   return problem;
 }
 
-int execute(bool quick, std::vector<int> thread_counts) {
+/// A peer scene: a problem other MPM codes run at the same size and step, for side-by-side
+/// particle-steps per second. `overrides` pin what the comparison depends on; `quick_stop` shortens
+/// the run for --quick.
+struct PeerScene {
+  std::string label;
+  std::string scene;  ///< embedded scene name below scenes/
+  std::map<std::string, std::string> overrides;
+  std::map<std::string, std::string> quick_stop;
+};
+
+std::vector<PeerScene> peer_scenes() {
+  return {
+      {"block", "bench/block.toml", {{"output.interval", "0.0"}}, {{"stop.max_steps", "30"}}},
+      {"disks", "bench/disks.toml", {{"output.interval", "0.0"}}, {{"stop.max_steps", "36"}}},
+      // The paper scene itself at its 0.181 mm cell, 0-20 µs (time-to-failure damage, Weibull
+      // strengths, three bodies, traction loads; adaptive Δt).
+      {"brazilian", "paper/brazilian.toml",
+       {{"grid.cell_size", "\"0.181 mm\""}, {"stop.end_time", "\"20 us\""}, {"output.interval", "0.0"}},
+       {{"stop.end_time", "\"2 us\""}}},
+  };
+}
+
+struct PeerTiming {
+  std::size_t particles = 0;
+  long long steps = 0;
+  double wall = 0.0;  ///< [s]
+};
+
+/// Steps a copy of `problem` to its stop condition (end time or step count), timing every step.
+std::optional<PeerTiming> time_peer_run(const mpm::Problem<2>& problem) {
+  mpm::Solver<2> solver(problem);
+  const mpm::StopSpec& stop = problem.stop;
+  PeerTiming timing;
+  timing.particles = solver.particles().size();
+  const auto start = Clock::now();
+  while (solver.time() < stop.end_time * (1.0 - 1e-12) && solver.step_count() < stop.max_steps) {
+    const double cap = std::isfinite(stop.end_time) ? stop.end_time - solver.time()
+                                                    : std::numeric_limits<double>::infinity();
+    if (auto failure = solver.step(cap)) {
+      std::fprintf(stderr, "bench: %s\n", failure->what.c_str());
+      return std::nullopt;
+    }
+  }
+  timing.wall = std::chrono::duration<double>(Clock::now() - start).count();
+  timing.steps = solver.step_count();
+  return timing;
+}
+
+/// Particle-steps per second of the peer scenes, median of `repeats` runs per thread count.
+int run_peer_scenes(bool quick, const std::vector<int>& thread_counts, int repeats,
+                    std::size_t triad_elements) {
+  std::printf("\npeer scenes (the same problems as other MPM codes; whole run timed, median of %d run(s)%s)\n",
+              repeats, quick ? ", shortened by --quick" : "");
+  std::printf("%-18s %9s %7s %6s %9s %14s %12s %16s\n", "scene", "particles", "threads", "steps",
+              "wall [s]", "particle-steps/s", "triad [GB/s]", "bytes/particle-step");
+  for (const PeerScene& peer : peer_scenes()) {
+    std::map<std::string, std::string> overrides = peer.overrides;
+    if (quick)
+      for (const auto& [key, value] : peer.quick_stop) overrides[key] = value;
+    const mpm::Problem<2> problem =
+        parse_scene(with_overrides(embedded_scene(peer.scene), overrides), "scenes/" + peer.scene);
+    for (int threads : thread_counts) {
+      omp_set_num_threads(threads);
+      std::vector<PeerTiming> runs;
+      for (int r = 0; r < repeats; ++r) {
+        const auto timing = time_peer_run(problem);
+        if (!timing) return 3;
+        runs.push_back(*timing);
+      }
+      std::sort(runs.begin(), runs.end(), [](const PeerTiming& a, const PeerTiming& b) { return a.wall < b.wall; });
+      const PeerTiming& median = runs[runs.size() / 2];
+      const double rate = double(median.particles) * double(median.steps) / median.wall;
+      const double bandwidth = triad_bandwidth(threads, triad_elements, quick ? 3 : 5);
+      std::printf("%-18s %9zu %7d %6lld %9.3f %14.4g %12.2f %16.1f\n", peer.label.c_str(), median.particles,
+                  threads, median.steps, median.wall, rate, bandwidth, bandwidth * 1e9 / rate);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
+
+int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_only) {
   const std::vector<BenchCase> cases =
       quick ? std::vector<BenchCase>{{10000, 50}, {100000, 8}}
             : std::vector<BenchCase>{{10000, 400}, {100000, 60}, {1000000, 8}};
@@ -75,6 +160,8 @@ int execute(bool quick, std::vector<int> thread_counts) {
     if (omp_get_num_procs() > 1) thread_counts.push_back(std::min(2, omp_get_num_procs()));
   }
   const std::size_t triad_elements = quick ? (std::size_t(1) << 22) : (std::size_t(1) << 24);
+  if (repeats <= 0) repeats = quick ? 1 : 3;
+  if (peers_only) return run_peer_scenes(quick, thread_counts, repeats, triad_elements);
   std::printf("fragmpm bench%s: elastic block (one field) and the same block as two touching bodies "
               "(partitioned contact), CPDI, 2x2 particles per cell, %d core(s)\n",
               quick ? " --quick" : "", omp_get_num_procs());
@@ -111,7 +198,7 @@ int execute(bool quick, std::vector<int> thread_counts) {
   }
   std::printf("bytes/particle-step = triad bandwidth / particle-step rate: the memory traffic one "
               "particle-step is worth on this machine (lower is better, comparable across machines).\n");
-  return 0;
+  return run_peer_scenes(quick, thread_counts, repeats, triad_elements);
 }
 
 }  // namespace
@@ -119,10 +206,17 @@ int execute(bool quick, std::vector<int> thread_counts) {
 void add_bench_command(CLI::App& app, CommandResult& result) {
   auto quick = std::make_shared<bool>(false);
   auto threads = std::make_shared<std::vector<int>>();
+  auto repeats = std::make_shared<int>(0);
+  auto peers_only = std::make_shared<bool>(false);
   CLI::App* bench = app.add_subcommand("bench", "Particle-steps per second next to a memory-bandwidth reference");
-  bench->add_flag("--quick", *quick, "Short run: 1e4 and 1e5 particles only");
+  bench->add_flag("--quick", *quick, "Short run: 1e4 and 1e5 particles only, peer scenes a tenth of their steps");
   bench->add_option("--threads", *threads, "Thread counts to measure (default: 1 and 2)")->delimiter(',');
-  bench->callback([quick, threads, &result] { result.exit_code = execute(*quick, *threads); });
+  bench->add_option("--repeats", *repeats, "Runs per peer scene and thread count; the median is shown (default 3, 1 with --quick)")
+      ->check(CLI::Range(1, 1000));
+  bench->add_flag("--peers-only", *peers_only, "Only the peer scenes (block, disks, Brazilian disk)");
+  bench->callback([quick, threads, repeats, peers_only, &result] {
+    result.exit_code = execute(*quick, *threads, *repeats, *peers_only);
+  });
 }
 
 }  // namespace fragmpm::pipeline

@@ -1,0 +1,103 @@
+// The peer scenes of `fragmpm bench` compile to the problems other MPM codes run: the stated
+// particle counts, masses, momenta, walls, friction and fixed steps below the stability limit.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <variant>
+
+#include "fragmpm/mpm/solver.hpp"
+#include "fragmpm/pipeline/embedded_scenes.hpp"
+#include "fragmpm/pipeline/scene.hpp"
+
+namespace fp = fragmpm::pipeline;
+namespace mpm = fragmpm::mpm;
+
+namespace {
+
+mpm::Problem<2> embedded(const std::string& name) {
+  return fp::parse_scene(fp::embedded_scene(name), "scenes/" + name);
+}
+
+double total_mass(const mpm::Problem<2>& p) {
+  double m = 0.0;
+  for (double x : p.particles.mass) m += x;
+  return m;
+}
+
+mpm::Vec<2> total_momentum(const mpm::Problem<2>& p) {
+  mpm::Vec<2> sum = mpm::Vec<2>::Zero();
+  for (std::size_t i = 0; i < p.particles.size(); ++i) sum += p.particles.mass[i] * p.particles.v[i];
+  return sum;
+}
+
+bool module_on(const mpm::Problem<2>& p, const std::string& name) {
+  for (const auto& m : mpm::plan_modules<2>(p))
+    if (m.module == name) return m.active;
+  return false;
+}
+
+}  // namespace
+
+TEST(BenchScenes, BlockIs100000ParticlesAt10MetresPerSecondOnARollerWall) {
+  const mpm::Problem<2> p = embedded("bench/block.toml");
+  ASSERT_EQ(p.particles.size(), 100000u);  // 125 × 200 mm at h = 1 mm, 2 × 2 per cell
+  EXPECT_NEAR(total_mass(p), 2300.0 * 0.125 * 0.200, 1e-9 * 57.5);  // kg per unit thickness
+  const mpm::Vec<2> momentum = total_momentum(p);
+  EXPECT_NEAR(momentum[0], -10.0 * 57.5, 1e-9 * 575.0);
+  EXPECT_EQ(momentum[1], 0.0);
+  ASSERT_EQ(p.walls.size(), 1u);
+  EXPECT_EQ(p.walls[0].kind, mpm::WallKind::roller);
+  EXPECT_EQ(p.walls[0].point[0], 0.0);
+  double leftmost = 1.0;
+  for (const auto& x : p.particles.x) leftmost = std::min(leftmost, x[0]);
+  EXPECT_NEAR(leftmost, 0.25e-3, 1e-12);  // the first particle row touches the wall plane
+  EXPECT_FALSE(module_on(p, "partitioning"));
+  // Fixed Δt = 0.1017 µs, 295 steps: 71 % of the stability limit h / (√2 (c + |v|)).
+  EXPECT_DOUBLE_EQ(p.time.fixed_dt, 0.1017e-6);
+  EXPECT_EQ(p.stop.max_steps, 295);
+  const double limit = mpm::stable_time_step<2>(p, p.particles, 1.0);
+  EXPECT_NEAR(p.time.fixed_dt / limit, 0.71, 0.01);
+}
+
+TEST(BenchScenes, DisksAreTwoMirrorBodiesOf25974ParticlesWithCoulombContact) {
+  const mpm::Problem<2> p = embedded("bench/disks.toml");
+  ASSERT_EQ(p.particles.size(), 51948u);
+  std::size_t left = 0;
+  double left_max_x = -1.0, right_min_x = 1.0;
+  for (std::size_t i = 0; i < p.particles.size(); ++i) {
+    if (p.particles.body[i] == 0) {
+      ++left;
+      left_max_x = std::max(left_max_x, p.particles.x[i][0]);
+    } else {
+      right_min_x = std::min(right_min_x, p.particles.x[i][0]);
+    }
+  }
+  EXPECT_EQ(left, 25974u);  // the two disks are mirror images: the same count each
+  // They touch at x = 0: the nearest particles sit half a particle spacing (27.5 µm) either side.
+  EXPECT_NEAR(left_max_x, -27.5e-6, 1e-12);
+  EXPECT_NEAR(right_min_x, 27.5e-6, 1e-12);
+  const mpm::Vec<2> momentum = total_momentum(p);
+  EXPECT_NEAR(momentum.norm(), 0.0, 1e-9 * total_mass(p) * 10.0);  // ±10 m/s
+  ASSERT_TRUE(std::holds_alternative<mpm::CoulombFriction>(p.contact.friction));
+  EXPECT_DOUBLE_EQ(std::get<mpm::CoulombFriction>(p.contact.friction).coefficient, 0.2);
+  EXPECT_TRUE(module_on(p, "partitioning"));
+  EXPECT_DOUBLE_EQ(p.time.fixed_dt, 0.01119e-6);
+  EXPECT_EQ(p.stop.max_steps, 358);
+  const double limit = mpm::stable_time_step<2>(p, p.particles, 1.0);
+  EXPECT_NEAR(p.time.fixed_dt / limit, 0.71, 0.01);
+}
+
+TEST(BenchScenes, BrazilianDiskAtItsPaperCellIs15450Particles) {
+  const mpm::Problem<2> p = embedded("paper/brazilian.toml");
+  ASSERT_EQ(p.particles.size(), 15450u);
+  std::size_t per_body[3] = {0, 0, 0};
+  for (int b : p.particles.body) ++per_body[b];
+  EXPECT_EQ(per_body[0], 9598u);  // the Ø10 mm disk at h = 0.181 mm, 2 × 2 per cell
+  EXPECT_EQ(per_body[1], 2926u);  // each 12 × 2 mm platen
+  EXPECT_EQ(per_body[2], 2926u);
+  EXPECT_DOUBLE_EQ(p.stop.end_time, 20e-6);
+  EXPECT_TRUE(module_on(p, "damage"));
+  EXPECT_TRUE(module_on(p, "partitioning"));
+}
