@@ -24,9 +24,10 @@ inline ConstitutiveResult update_constitutive(StepState<D>& state, std::int64_t 
   auto& P = state.problem.particles;
   const int material = P.material[p];
   const NeoHookean& model = state.models[static_cast<std::size_t>(material)];
-  Mat<D> trial = model.cauchy<D>(P.F[p]);
+  Mat<D> trial;
+  double psi;
+  model.stress_and_energy<D>(P.F[p], trial, psi);
   if constexpr (Thermal) trial += state.thermal->stress(material, P.F[p], P.temperature[p]);
-  const double psi = model.energy_density<D>(P.F[p]);
   if (!state.material_damages[static_cast<std::size_t>(material)]) {
     P.stress[p] = trial;
     return {psi, 0.0};

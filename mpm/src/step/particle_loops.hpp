@@ -13,7 +13,7 @@ inline void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<
   if constexpr (Kind == ShapeFunctionKind::linear) linear_stencil<D>(P.x[p], grid, s);
   else if constexpr (Kind == ShapeFunctionKind::ugimp)
     ugimp_stencil<D>(P.x[p], 0.5 * P.domain[p].diagonal().cwiseAbs(), grid, s);
-  else cpdi_stencil<D>(P.x[p], P.domain[p], grid, s);
+  else cpdi_compact_stencil<D>(P.x[p], P.domain[p], grid, s);
 }
 
 /// Runs body(p, stencil) over the particles p with keep(p), strip by strip in two parity passes, so

@@ -52,6 +52,19 @@ struct NeoHookean {
            0.5 * shear_modulus * (std::pow(J, -2.0 / 3.0) * trace_b<D>(F) - 3.0);
   }
 
+  /// Cauchy stress [Pa] and strain energy per reference volume [J/m³] together: the same values as
+  /// cauchy() and energy_density(), with J, ln J and J^{-2/3} computed once.
+  template <int D>
+  void stress_and_energy(const Mat<D>& F, Mat<D>& stress, double& energy) const {
+    const double J = F.determinant();
+    const double log_J = std::log(J);
+    const double J_m23 = std::pow(J, -2.0 / 3.0);
+    const double tr_b = trace_b<D>(F);
+    const Mat<D> b = F * F.transpose();
+    const double mean_b = tr_b / 3.0;
+    stress = (bulk_modulus * log_J * Mat<D>::Identity() + shear_modulus * J_m23 * (b - mean_b * Mat<D>::Identity())) / J;
+    energy = 0.5 * bulk_modulus * log_J * log_J + 0.5 * shear_modulus * (J_m23 * tr_b - 3.0);
+  }
   /// Dilatational wave speed c = sqrt((K + 4G/3)/ρ) for current density ρ [m/s].
   double wave_speed(double density) const {
     return std::sqrt((bulk_modulus + 4.0 * shear_modulus / 3.0) / density);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "fragmpm/mpm/grid_index.hpp"
 #include "fragmpm/mpm/problem.hpp"
@@ -157,6 +158,71 @@ inline void cpdi_stencil(const Vec<D>& x, const Mat<D>& domain, const GridIndex<
                             stencil.weight[e] = corner_share * value;
                             stencil.gradient[e] = value * corner_vector;
                           });
+  }
+}
+
+/// The CPDI stencil of cpdi_stencil with the entries of a node merged: corners sharing a cell give
+/// the same node up to 2^D times, and a particle no larger than a cell touches at most 3^D nodes
+/// (9 in 2D instead of 16 entries), so every scatter and gather over the stencil does less work.
+/// Weights and gradients are the same sums, taken before instead of after the scatter. A domain
+/// whose corners lie more than one cell apart falls back to the entry-per-corner form.
+template <int D>
+inline void cpdi_compact_stencil(const Vec<D>& x, const Mat<D>& domain, const GridIndex<D>& grid,
+                                 Stencil<D>& stencil) {
+  constexpr int corners = 1 << D;
+  std::array<Vec<D>, corners> position;
+  IVec<D> first = IVec<D>::Constant(std::numeric_limits<std::int64_t>::max());
+  IVec<D> last = IVec<D>::Constant(std::numeric_limits<std::int64_t>::min());
+  for (int corner = 0; corner < corners; ++corner) {
+    Vec<D> signs;
+    for (int k = 0; k < D; ++k) signs[k] = ((corner >> k) & 1) ? 1.0 : -1.0;
+    position[corner] = x + 0.5 * domain * signs;
+    for (int k = 0; k < D; ++k) {
+      const auto cell = static_cast<std::int64_t>(
+          std::floor((position[corner][k] - grid.origin[k]) * grid.inverse_cell_size));
+      first[k] = std::min(first[k], cell);
+      last[k] = std::max(last[k], cell);
+    }
+  }
+  for (int k = 0; k < D; ++k)
+    if (last[k] - first[k] > 1) return cpdi_stencil<D>(x, domain, grid, stencil);
+  // Local box of 3^D nodes from `first`; entry of local node (l_0, …) is Σ_k l_k 3^k.
+  constexpr int box = D == 2 ? 9 : 27;
+  std::array<double, box> weight{};
+  std::array<Vec<D>, box> gradient;
+  std::array<bool, box> touched{};
+  for (auto& g : gradient) g.setZero();
+  const Mat<D> inverse_transpose = domain.inverse().transpose();
+  constexpr double corner_share = 1.0 / double(corners);
+  constexpr double gradient_scale = 2.0 / double(corners);
+  for (int corner = 0; corner < corners; ++corner) {
+    Vec<D> signs;
+    for (int k = 0; k < D; ++k) signs[k] = ((corner >> k) & 1) ? 1.0 : -1.0;
+    const Vec<D> corner_vector = gradient_scale * (inverse_transpose * signs);
+    detail::linear_hat<D>(position[corner], grid, [&](const IVec<D>& node, double value, const Vec<D>&) {
+      int local = 0, stride = 1;
+      for (int k = 0; k < D; ++k) {
+        local += static_cast<int>(node[k] - first[k]) * stride;
+        stride *= 3;
+      }
+      touched[local] = true;
+      weight[local] += corner_share * value;
+      gradient[local] += value * corner_vector;
+    });
+  }
+  stencil.count = 0;
+  for (int local = 0; local < box; ++local) {
+    if (!touched[local]) continue;
+    IVec<D> node = first;
+    int rest = local;
+    for (int k = 0; k < D; ++k) {
+      node[k] += rest % 3;
+      rest /= 3;
+    }
+    const int e = stencil.count++;
+    stencil.node[e] = grid.linear(node);
+    stencil.weight[e] = weight[local];
+    stencil.gradient[e] = gradient[local];
   }
 }
 
