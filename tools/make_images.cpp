@@ -1,4 +1,4 @@
-// fragmpm_make_images OUT_DIR [--data DIR]: writes the sample images of images/ (issue 5 item 5).
+// fragmpm_make_images OUT_DIR [--data DIR]: writes the sample images of images/.
 //   OUT_DIR/synthetic/*.png, *.tif   synthetic micrographs with known answers (segment_synthetic.hpp)
 //                                    and their ground-truth label images (*_truth.png, 16-bit)
 //   with --data DIR (the shared data folder, see images/PROVENANCE.md):

@@ -94,7 +94,7 @@ ParticleFigure frame_figure(const mpm::Particles<2>& p, FrameField field, std::o
       require_size(p.damage, n, "damage");
       f.values = p.damage;
       name_field(f, "damage", "");
-      f.vmin = 0.0;  // d in [0, 1] (000 §2): a fixed range makes frames comparable
+      f.vmin = 0.0;  // d in [0, 1] ([XLS21] §2): a fixed range makes frames comparable
       f.vmax = 1.0;
       break;
     case FrameField::temperature:

@@ -301,7 +301,7 @@ void damage_field_gradient(const NeighbourLists<D>& lists, const std::vector<Vec
       const double r2 = r.squaredNorm();
       if (r2 >= radius2) continue;  // in the skin: ω = 0, ∇ω = 0
       const double rbar = std::sqrt(r2) * inverse_radius;
-      const double w = 1.0 - rbar * rbar * (3.0 - 2.0 * rbar);  // 001 eq. (18)
+      const double w = 1.0 - rbar * rbar * (3.0 - 2.0 * rbar);  // [HH17] eq. (18)
       const Vec<D> gw = (gradient_factor * (1.0 - rbar)) * r;   // ∇_x ω at x_p
       const double d = dhat[q];
       sum_w += w;
@@ -309,7 +309,7 @@ void damage_field_gradient(const NeighbourLists<D>& lists, const std::vector<Vec
       grad_w += gw;
       grad_dw += d * gw;
     }
-    const double value = sum_dw / sum_w;  // 001 eq. (19): normalised by the kernel sum
+    const double value = sum_dw / sum_w;  // [HH17] eq. (19): normalised by the kernel sum
     field[p] = value;
     gradient[p] = (grad_dw - value * grad_w) / sum_w;
   }

@@ -1,5 +1,5 @@
-// Damage laws: Rankine with mesh-regularised linear softening (000 eq. 19-21), time to failure
-// (001 eq. 24), Weibull strengths (001 eq. 25), stress degradation (001 eq. 26-27; 000 eq. 7) and
+// Damage laws: Rankine with mesh-regularised linear softening ([XLS21] eq. (19)-(21), time to failure
+// ([HH17] eq. (24), Weibull strengths ([HH17] eq. (25), stress degradation ([HH17] eq. (26)-(27); [XLS21] eq. (7) and
 // the energy that damage dissipates.
 #include "fragmpm/mpm/damage_law.hpp"
 
@@ -13,7 +13,7 @@
 namespace fragmpm::mpm {
 namespace {
 
-/// H̄ = σ_f² / (2 E G_f) [1/m] (000 eq. 21).
+/// H̄ = σ_f² / (2 E G_f) [1/m] ([XLS21] eq. (21).
 double brittleness(double strength, const RankineSoftening& law) {
   return strength * strength / (2.0 * law.youngs_modulus * law.fracture_energy);
 }
@@ -31,7 +31,7 @@ using Eigensolver = Eigen::SelfAdjointEigenSolver<Mat<D>>;
 double rankine_softening_modulus(double strength, const RankineSoftening& law, double characteristic_length) {
   const double x = brittleness(strength, law) * characteristic_length;  // H̄ l_ch
   if (!(x >= 0.0 && x < 1.0)) return std::numeric_limits<double>::quiet_NaN();
-  return x / (1.0 - x);  // 000 eq. (20): H_s = H̄ l_ch / (1 − H̄ l_ch)
+  return x / (1.0 - x);  // [XLS21] eq. (20): H_s = H̄ l_ch / (1 − H̄ l_ch)
 }
 
 double rankine_largest_characteristic_length(double strength, const RankineSoftening& law) {
@@ -44,7 +44,7 @@ double rankine_largest_characteristic_length(double strength, const RankineSofte
 // anything is in tension, σ₁ > 0, and then σ₃₃ − σ₁ = ν σ₂ − (1 − ν) σ₁ ≤ ν σ₁ − (1 − ν) σ₁ =
 // (2ν − 1) σ₁ ≤ 0 for ν ≤ ½; when σ₁ ≤ 0 all three are compressive (σ₃₃ ≤ 0). So σ₃₃ never exceeds
 // the largest in-plane principal stress while it could reach σ_f > 0, and the in-plane maximum is
-// the Rankine equivalent stress (000 eq. 19).
+// the Rankine equivalent stress ([XLS21] eq. (19).
 template <int D>
 double largest_principal_stress(const Mat<D>& stress) {
   if constexpr (D == 2) {
@@ -69,31 +69,31 @@ void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double stre
   history = std::max(history, largest_principal_stress<D>(trial_stress));
 
   if (const auto* rankine = std::get_if<RankineSoftening>(&law)) {
-    const double R = std::max(strength, history);  // 000 eq. (19)
+    const double R = std::max(strength, history);  // [XLS21] eq. (19)
     if (!(R > strength)) return;
     const double H_s = rankine_softening_modulus(strength, *rankine, characteristic_length);
     // A cell too coarse for this particle's strength (snap-back; the scene refuses it for the
     // nominal strength, but a strong Weibull draw may still exceed it): no softening branch exists,
     // so the particle fails at once, which is the limit H_s → ∞ of eq. (20).
     double d = 1.0;
-    if (std::isfinite(H_s)) d = std::min(1.0, (1.0 + H_s) * (1.0 - strength / R));  // 000 eq. (20)
+    if (std::isfinite(H_s)) d = std::min(1.0, (1.0 + H_s) * (1.0 - strength / R));  // [XLS21] eq. (20)
     damage = std::max(damage, d);
     return;
   }
   if (const auto* ttf = std::get_if<TimeToFailure>(&law)) {
     if (!(history >= strength) || damage >= 1.0) return;
-    // τ = l_ch / c_f is the time the crack needs to cross the particle (001 §2.7; the paper's
+    // τ = l_ch / c_f is the time the crack needs to cross the particle ([HH17] §2.7; the paper's
     // "τ = c_f/ℓ" has the ratio inverted, see damage_law.hpp).
     const double tau = characteristic_length / ttf->crack_speed;
-    damage = snap_to_one(std::min(1.0, damage + dt / tau));  // 001 eq. (24)
+    damage = snap_to_one(std::min(1.0, damage + dt / tau));  // [HH17] eq. (24)
   }
 }
 
 template <int D>
 Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation degradation) {
   if (damage <= 0.0) return trial_stress;
-  if (degradation == Degradation::isotropic) return (1.0 - damage) * trial_stress;  // 000 eq. (7)
-  // 001 eq. (26-27): scale the tensile principal stresses, keep the compressive ones, rebuild with
+  if (degradation == Degradation::isotropic) return (1.0 - damage) * trial_stress;  // [XLS21] eq. (7)
+  // [HH17] eq. (26)-(27): scale the tensile principal stresses, keep the compressive ones, rebuild with
   // the same eigenvectors.
   Eigensolver<D> es;
   es.computeDirect(trial_stress);
@@ -103,13 +103,13 @@ Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation deg
   return es.eigenvectors() * values.asDiagonal() * es.eigenvectors().transpose();
 }
 
-// Why Δd ψ_t is the dissipation (DESIGN §4: "the energy released must equal what the damage law
+// Why Δd ψ_t is the dissipation (docs/design.md: "the energy released must equal what the damage law
 // dissipates"). Small strain first: at fixed d the degraded stress is σ = σ̄ − d σ̄⁺ with σ̄ = C ε and
 // σ̄⁺ its tensile principal part. Unloading along the ray s ε (s from 1 to 0) keeps the principal
 // directions and the signs of σ̄, and σ is linear in s, so the energy given back is
 //   ∫₀¹ σ(s ε) : ε ds = ½ σ̄ : ε − d ½ σ̄⁺ : ε = ψ − d ψ_t,   ψ_t = ½ Σ_{σ̄_i > 0} σ̄_i ε_i.
 // That recoverable (secant) energy is the stored energy; raising d by Δd at fixed strain releases
-// Δd ψ_t, the energy release Y Δd of 000 eq. (6). Along a proportional strain path (uniaxial
+// Δd ψ_t, the energy release Y Δd of [XLS21] eq. (6). Along a proportional strain path (uniaxial
 // tension, the mode-I loading of a crack band) dψ_t = σ̄⁺ : dε, so the work σ : dε minus the change of
 // stored energy is exactly Δd ψ_t at every step. In uniaxial tension σ = (1 − d) E ε with eq. (20)
 // falls linearly from σ_f at ε_f = σ_f/E to zero at ε_u = σ_f (1 + H_s) / (E H_s); the triangle's
@@ -170,7 +170,7 @@ std::vector<double> weibull_strengths(const std::vector<double>& volumes, const 
     // std::uniform_real_distribution).
     const double R = (static_cast<double>(rng() >> 11) + 0.5) * 0x1p-53;
     const double V = dimension == 2 ? volumes[p] * w.thickness : volumes[p];
-    out[p] = w.reference_strength * std::pow(w.reference_volume / V * std::log(R) / ln_half, 1.0 / w.modulus);  // 001 eq. (25)
+    out[p] = w.reference_strength * std::pow(w.reference_volume / V * std::log(R) / ln_half, 1.0 / w.modulus);  // [HH17] eq. (25)
   }
   return out;
 }

@@ -1,4 +1,4 @@
-// The run file of DESIGN §5 on top of hdf5_io; see run_file.hpp for the layout.
+// The run file of docs/design.md on top of hdf5_io; see run_file.hpp for the layout.
 #include "fragmpm/mpm/build_info.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// How particle arrays map to run-file datasets (DESIGN §5): units, shapes and the copies between
+// How particle arrays map to run-file datasets (docs/design.md): units, shapes and the copies between
 // Eigen arrays of small matrices and row-major HDF5 buffers, and the layout code the writer
 // (run_file.cpp) and the reader (run_file_reader.cpp) share. Private to mpm/src.
 #include <string>

@@ -59,7 +59,7 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   std::string partition_reason;
   if (problem.contact.partitioning == Partitioning::bodies)
     partition_reason = "partitioning = \"bodies\" in [contact]: body 0 and the other bodies are "
-                       "two always-separable fields (multimaterial contact, 004 §2.2)";
+                       "two always-separable fields (multimaterial contact, [NBS18] §2.2)";
   else if (problem.contact.partitioning == Partitioning::off)
     partition_reason = "partitioning = \"off\" in [contact]: one velocity field (single-field MPM)";
   else if (partitioning_active(problem))
@@ -90,11 +90,11 @@ double stable_time_step(const Problem<D>& problem, const Particles<D>& particles
     const double c = models[particles.material[p]].wave_speed(density);
     max_speed = std::max(max_speed, c + particles.v[p].norm());
   }
-  // The explicit conduction limit joins the CFL limit when the thermal module runs (DESIGN §4).
+  // The explicit conduction limit joins the CFL limit when the thermal module runs (docs/design.md).
   const double thermal_limit = thermal_stable_time_step<D>(problem, particles, cfl);
   if (max_speed <= 0.0) return thermal_limit;
   // Multilinear hats with a lumped mass: the stiffest grid mode of a cell has ω = 2c√D/h, so
-  // central-difference stepping is stable for Δt < 2/ω = h/(c√D). The DESIGN's h/c is the 1D value
+  // central-difference stepping is stable for Δt < 2/ω = h/(c√D). The 1D textbook h/c is the 1D value
   // and lets a 2D scene run unstably at C_cfl close to 1.
   return std::min(thermal_limit, cfl * problem.grid.cell_size / (std::sqrt(double(D)) * max_speed));
 }

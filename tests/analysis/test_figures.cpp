@@ -1,4 +1,4 @@
-// Off-screen figures (DESIGN §6 "Figures", issue 6 item 4): nice ticks, line plots with their axes,
+// Off-screen figures (docs/design.md "Figures"): nice ticks, line plots with their axes,
 // particle figures with colour-map colours at known pixels, clear errors on bad input, and
 // `fragmpm render` through the binary on a small run file.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Fragments (DESIGN §6): union-find labelling, fines, the raster cross-check, per-fragment shape
+// Fragments (docs/design.md): union-find labelling, fines, the raster cross-check, per-fragment shape
 // statistics against closed forms, and the empirical CDFs.
 #include <gtest/gtest.h>
 

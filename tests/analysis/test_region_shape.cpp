@@ -1,4 +1,4 @@
-// Shape measures shared by grains and fragments (DESIGN §6): closed forms for rectangles, disks and
+// Shape measures shared by grains and fragments (docs/design.md): closed forms for rectangles, disks and
 // ellipses, and the invariance that makes pixels and particle domains interchangeable.
 #include <gtest/gtest.h>
 

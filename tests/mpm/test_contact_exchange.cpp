@@ -1,6 +1,6 @@
-// Node-level contact (004 §2.6-2.10): each friction law against its closed form at a single two-field
+// Node-level contact ([NBS18] §2.6-2.10): each friction law against its closed form at a single two-field
 // node in the stick and slide branches; momentum conservation; removal of approach; separating
-// fields; rigid walls; tensile adhesion (eq. 25); friction work against the kinetic energy removed.
+// fields; rigid walls; tensile adhesion (eq. (25)); friction work against the kinetic energy removed.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -49,7 +49,7 @@ ContactExchange<2> run(const ContactNode<2>& node, const FrictionLaw& law,
 
 TEST(ContactExchange, CoulombSlideIsEq20AndStickIsCentreOfMass) {
   const CoulombFriction law{0.3};
-  // Slide: d_t = 1.2·2 = 2.4 > μ N* = 0.36 → Δp′ = d_n (n − μ t̂) with t̂ = +x (004 eq. 20).
+  // Slide: d_t = 1.2·2 = 2.4 > μ N* = 0.36 → Δp′ = d_n (n − μ t̂) with t̂ = +x ([NBS18] eq. (20).
   const auto node = two_field_node(2.0);
   const auto ex = run(node, law);
   ASSERT_TRUE(ex.in_contact);
@@ -59,7 +59,7 @@ TEST(ContactExchange, CoulombSlideIsEq20AndStickIsCentreOfMass) {
   EXPECT_NEAR(ex.normal_impulse, normal_star, 1e-14);
   EXPECT_NEAR(ex.slip_speed, 2.0 - 0.3 * normal_star / m_red, 1e-14);
 
-  // Stick: d_t = 1.2·0.25 = 0.3 < 0.36 → both fields take the centre-of-mass velocity (004 eq. 12-13).
+  // Stick: d_t = 1.2·0.25 = 0.3 < 0.36 → both fields take the centre-of-mass velocity ([NBS18] eq. (12)-(13).
   const auto stuck_node = two_field_node(0.25);
   const auto stuck = run(stuck_node, law);
   ASSERT_TRUE(stuck.in_contact);
@@ -77,10 +77,10 @@ TEST(ContactExchange, VelocityDependentSlipSpeedSatisfiesEq22) {
   const auto ex = run(node, law);
   ASSERT_TRUE(ex.sliding);
   const double s = ex.momentum_change_a.x();
-  // Closed form s = (m_red μ₀ + k d_t) N* / (m_red + k N*) (eq. 23 with N* = −d_n).
+  // Closed form s = (m_red μ₀ + k d_t) N* / (m_red + k N*) (eq. (23) with N* = −d_n).
   const double d_t = m_red * 4.0;
   EXPECT_NEAR(s, (m_red * 0.2 + 0.05 * d_t) * normal_star / (m_red + 0.05 * normal_star), 1e-14);
-  // Consistency with eq. 22: the sliding traction is μ at the final slip speed times N.
+  // Consistency with eq. (22): the sliding traction is μ at the final slip speed times N.
   const Vec<2> slip = velocity_after_b(node, ex) - velocity_after_a(node, ex);
   EXPECT_NEAR(slip.y(), 0.0, 1e-14);
   EXPECT_NEAR(slip.x(), ex.slip_speed, 1e-13);
@@ -244,7 +244,7 @@ TEST(ContactExchange, SeparatingOrGappedFieldsAreUntouched) {
   EXPECT_FALSE(apart.in_contact);
   EXPECT_EQ(apart.momentum_change_a, Vec<2>::Zero());
   EXPECT_EQ(apart.friction_work, 0.0);
-  // Approaching but the position test says the surfaces are apart (004 eq. 8).
+  // Approaching but the position test says the surfaces are apart ([NBS18] eq. (8).
   auto gapped = two_field_node(1.0);
   gapped.gap_closed = false;
   EXPECT_FALSE(run(gapped, CoulombFriction{0.5}).in_contact);
@@ -283,8 +283,8 @@ TEST(ContactExchange, RigidWallTakesTheFieldToTheWallVelocity) {
 
 TEST(ContactExchange, SecondOrderWorkIsTheTangentialKineticEnergyRemovedWithoutForces) {
   // With no nodal forces the trial velocities are the start-of-step velocities; friction removes
-  // ½ m_red (v_t² − v′_t²) from the relative tangential motion in one step, which eq. 34 recovers
-  // exactly for any step size. First order (eq. 27) misses s²/(2 m_red) and converges as s → 0.
+  // ½ m_red (v_t² − v′_t²) from the relative tangential motion in one step, which eq. (34) recovers
+  // exactly for any step size. First order (eq. (27)) misses s²/(2 m_red) and converges as s → 0.
   const CoulombFriction law{0.25};
   for (double approach : {1.0, 1e-2, 1e-4}) {
     ContactNode<2> node = two_field_node(2.0);
@@ -312,7 +312,7 @@ TEST(ContactExchange, SecondOrderWorkClosesEnergyBalanceUnderConstantForces) {
   // Constant tangential nodal forces: the fields start the step at v⁰ = v − f Δt/m and the contact
   // force Δp′/Δt is constant, so velocities are linear in time and every work is exact by the
   // trapezoid rule. Kinetic energy change = work of the nodal forces − normal collision loss −
-  // friction work; eq. 34 must close this balance (eq. 30 carries the forces into f_t).
+  // friction work; eq. (34) must close this balance (eq. (30) carries the forces into f_t).
   const double step = 1e-3;
   ContactNode<2> node = two_field_node(2.0);
   node.force_a = Vec<2>(-300.0, 0.0);
@@ -322,7 +322,7 @@ TEST(ContactExchange, SecondOrderWorkClosesEnergyBalanceUnderConstantForces) {
   const Vec<2> va0 = node.velocity_a - node.force_a * step / node.mass_a;
   const Vec<2> vb0 = node.velocity_b - node.force_b * step / node.mass_b;
   const Vec<2> va1 = velocity_after_a(node, ex), vb1 = velocity_after_b(node, ex);
-  ASSERT_GT((vb0 - va0).x(), 0.0);  // slid the whole step (eq. 34 branch)
+  ASSERT_GT((vb0 - va0).x(), 0.0);  // slid the whole step (eq. (34) branch)
   const double force_work =
       step * (node.force_a.dot(0.5 * (va0 + va1)) + node.force_b.dot(0.5 * (vb0 + vb1)));
   // The normal contact impulse acts on normal velocities that the forces do not change.
@@ -335,7 +335,7 @@ TEST(ContactExchange, SecondOrderWorkClosesEnergyBalanceUnderConstantForces) {
   const auto first = exchange_momentum<2>(node, CoulombFriction{0.3}, step, FrictionWorkOrder::first);
   EXPECT_GT(std::abs(first.friction_work - friction_work), 1e-3 * friction_work);  // first order is not exact
 
-  // Slip starting within the step (v⁰ reversed): eq. 36 = W₁²/(2W₂) with t_s of eq. 35.
+  // Slip starting within the step (v⁰ reversed): eq. (36) = W₁²/(2W₂) with t_s of eq. (35).
   ContactNode<2> onset = node;
   onset.force_b = Vec<2>(9000.0, 0.0);
   const auto late = exchange_momentum<2>(onset, CoulombFriction{0.3}, step, FrictionWorkOrder::second);
@@ -353,7 +353,7 @@ TEST(ContactExchange, SecondOrderWorkClosesEnergyBalanceUnderConstantForces) {
 
 TEST(ContactExchange, ContactAreaSumsToTheNodeSpacingAcrossAStraightInterface) {
   // Interface parallel to the grid at height y₀ between nodes at y = 0 and y = h, material a below:
-  // with bilinear weights Ω_b(node 0) = h (h − y₀)²/(2h) and Ω_a(node h) = h y₀²/(2h) (004 eq. 5).
+  // with bilinear weights Ω_b(node 0) = h (h − y₀)²/(2h) and Ω_a(node h) = h y₀²/(2h) ([NBS18] eq. (5).
   const double h = 2e-3, t = 1e-3;
   for (double y0 : {0.0, 0.3e-3, 1.0e-3, 1.7e-3}) {
     const double lower = contact_area_2d(h * h, h * h - 0.5 * (h - y0) * (h - y0), 0.5 * (h - y0) * (h - y0), h, t);
@@ -368,7 +368,7 @@ TEST(ContactExchange, ContactAreaSumsToTheNodeSpacingAcrossAStraightInterface) {
 
 namespace {
 
-/// Ω_j and g_j (004 eq. 5-6) of node (0, 0) with bilinear hats of spacing h for the field occupying
+/// Ω_j and g_j ([NBS18] eq. (5)-(6) of node (0, 0) with bilinear hats of spacing h for the field occupying
 /// the rectangle [x0, x1] × [y0, y1], by the midpoint rule on n × n tiles per cell (the exact
 /// Σ S_ip V_p, Σ G_ip V_p of a CPDI/GIMP tiling in the limit).
 struct FieldIntegrals {
@@ -393,7 +393,7 @@ TEST(ContactExchange, AreaFromDomainGradientsIsExactWhereTheInterfaceEnds) {
   const double h = 1.0, t = 1.0;
   const Vec<2> n(0.0, 1.0);  // a below, b above
   // Straight interface at y₀ = 0.3 h across the whole support: hat-weighted length h − y₀;
-  // eq. 11 and the gradient form agree.
+  // eq. (11) and the gradient form agree.
   {
     const auto a = integrate_field(h, -2, 2, -2, 0.3, 400), b = integrate_field(h, -2, 2, 0.3, 2, 400);
     const double exact = 0.7;

@@ -1,5 +1,5 @@
 // Two-field contact inside the full step: distinct bodies are separable from the first step through
-// their surface flags (001 §2.4), so two elastic disks that collide rebound without
+// their surface flags ([HH17] §2.4), so two elastic disks that collide rebound without
 // interpenetrating and slide past each other without friction, while single-field MPM is no-slip;
 // the contact keeps momentum.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Kernel damage field and DFG partitioning rules (001 eq. 17-19, Alg. 1-2; 000 eq. 67-69), and the
+// Kernel damage field and DFG partitioning rules ([HH17] eq. (17)-(19), Alg. 1-2; [XLS21] eq. (67)-(69), and the
 // Verlet neighbour lists they run on.
 //
 // Exact answers used: on a square (cubic) lattice the neighbourhood of an interior particle is
@@ -342,7 +342,7 @@ TEST(DamageField, LinearRampGivesExactDirectionInTheInterior) {
 }
 
 // Constant d̂ = c: the normalised field is c and the gradient zero at every particle, also at free
-// edges and corners and for irregular spacing (001 Fig. 4c); the unnormalised sum would not be.
+// edges and corners and for irregular spacing ([HH17] Fig. 4c); the unnormalised sum would not be.
 TEST(DamageField, NormalisationRemovesEdgeEffects) {
   const double h = 1e-3, radius = std::sqrt(2.0) * h, c = 0.37;
   std::mt19937 rng(9);
@@ -471,7 +471,7 @@ TEST(DfgPartition, NodalMaximumIsOrderIndependentAndFieldRuleIsTheSign) {
   EXPECT_THROW(nodal_damage_gradient<2>(gp, start, nodes, gn), std::out_of_range);
 }
 
-// Synthetic straight crack (issue 3 item 6): a block with 2 particles per cell per direction and a
+// Synthetic straight crack: a block with 2 particles per cell per direction and a
 // one-particle-wide band of d̂ = 1 (|n·(x − c)| < s/2, s = h/2) across it, normal n at angle θ.
 // Stencils are linear hats. At every interior node within h/2 of the crack plane:
 //  * the nodal gradient is within `tolerance_deg` of ±n;

@@ -1,6 +1,6 @@
-// Damage laws against their closed forms: Rankine linear softening (000 eq. 19-21) along uniaxial
+// Damage laws against their closed forms: Rankine linear softening ([XLS21] eq. (19)-(21) along uniaxial
 // tension, the fracture energy of one softening element, the snap-back limit, degradation of the
-// stress (001 eq. 26-27; 000 eq. 7), time to failure (001 eq. 24) and Weibull strengths (001 eq. 25).
+// stress ([HH17] eq. (26)-(27); [XLS21] eq. (7), time to failure ([HH17] eq. (24) and Weibull strengths ([HH17] eq. (25).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -50,7 +50,7 @@ mpm::Mat<3> uniaxial_F(const mpm::NeoHookean& m, double strain) {
 }  // namespace
 
 TEST(DamageLaw, SofteningModulusAndSnapBackLimit) {
-  const double Hbar = kStrength * kStrength / (2.0 * kE * kGf);  // 000 eq. (21): 1785.7 1/m
+  const double Hbar = kStrength * kStrength / (2.0 * kE * kGf);  // [XLS21] eq. (21): 1785.7 1/m
   const double l = 0.4e-3;
   EXPECT_NEAR(mpm::rankine_softening_modulus(kStrength, rankine(), l), Hbar * l / (1.0 - Hbar * l), 1e-12);
 
@@ -203,7 +203,7 @@ TEST(DamageLaw, SpectralDegradationKeepsCompressionAndRemovesTension) {
   // Undamaged: unchanged.
   EXPECT_EQ(mpm::degrade_stress<2>(sigma, 0.0, mpm::Degradation::tensile_spectral), sigma);
 
-  // Isotropic (000 eq. 7) scales everything, compression included.
+  // Isotropic ([XLS21] eq. (7) scales everything, compression included.
   EXPECT_LT((mpm::degrade_stress<2>(sigma, 0.25, mpm::Degradation::isotropic) - 0.75 * sigma).norm(), 1e-9);
   EXPECT_LT(mpm::degrade_stress<2>(sigma, 1.0, mpm::Degradation::isotropic).norm(), 1e-9);
 }

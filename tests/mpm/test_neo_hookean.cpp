@@ -1,4 +1,4 @@
-// Neo-Hookean (000 eq. 16-17, plane strain): zero stress at F = I, objectivity, and the Kirchhoff
+// Neo-Hookean ([XLS21] eq. (16)-(17), plane strain): zero stress at F = I, objectivity, and the Kirchhoff
 // stress equal to the finite-difference derivative of the energy, τ = (∂ψ/∂F) Fᵀ.
 #include <gtest/gtest.h>
 

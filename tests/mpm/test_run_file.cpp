@@ -1,4 +1,4 @@
-// Run file (DESIGN §5): exact round trips of frames and checkpoints, series truncation, XDMF.
+// Run file (docs/design.md): exact round trips of frames and checkpoints, series truncation, XDMF.
 #include <gtest/gtest.h>
 
 #include <cstring>

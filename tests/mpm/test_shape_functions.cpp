@@ -1,6 +1,6 @@
 // Shape-function invariants: partition of unity, zero-sum gradients (a constant field has zero
 // gradient), exact gradient of a linear field, and CPDI = linear for an undeformed particle inside
-// one cell (the bilinear hat averaged over a centred box equals its centre value, 000 eq. 52-53).
+// one cell (the bilinear hat averaged over a centred box equals its centre value, [XLS21] eq. (52)-(53).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -113,7 +113,7 @@ TEST(ShapeFunctions, CpdiEqualsLinearForUndeformedParticleInsideOneCell) {
 }
 
 TEST(ShapeFunctions, CpdiGradientMatchesPaperEquation53) {
-  // 000 eq. (53) written out with full edge vectors: corners x1 = x − r1/2 − r2/2, x2 = x + r1/2 −
+  // [XLS21] eq. (53) written out with full edge vectors: corners x1 = x − r1/2 − r2/2, x2 = x + r1/2 −
   // r2/2, x3 = x + r1/2 + r2/2, x4 = x − r1/2 + r2/2.
   const auto g = test_grid();
   const Vec<2> x(0.61, 0.83);

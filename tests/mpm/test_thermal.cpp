@@ -1,4 +1,4 @@
-// Thermal module (000 §2.1-2.3, §3.1, Alg. 2): thermo-elastic stress and heating, conduction,
+// Thermal module ([XLS21] §2.1-2.3, §3.1, Alg. 2): thermo-elastic stress and heating, conduction,
 // thermal wall conditions, and that a scene without thermal data runs exactly as before.
 #include <gtest/gtest.h>
 
@@ -95,7 +95,7 @@ TEST(ThermalPhysics, AdiabaticRatioIsAFunctionOfStateAndHeatsInCompression) {
   const double up = mpm::adiabatic_temperature_ratio(K, alpha, rho, c, 1.0, 0.98, 1.0);
   EXPECT_GT(down, 1.0);
   EXPECT_NEAR(down * up, 1.0, 1e-15);
-  // Small change: θ̇/θ = −3α U″(J) J̇ /(ρ₀ c) with U″(1) = K (000 eq. 39).
+  // Small change: θ̇/θ = −3α U″(J) J̇ /(ρ₀ c) with U″(1) = K ([XLS21] eq. (39).
   const double small = mpm::adiabatic_temperature_ratio(K, alpha, rho, c, 1.0, 1.0, 1.0 - 1e-6);
   EXPECT_NEAR((small - 1.0) / 1e-6, 3.0 * alpha * K / (rho * c), 1e-5 * 3.0 * alpha * K / (rho * c));
   // Fully damaged and isotropically degraded: no coupling left.
@@ -106,7 +106,7 @@ TEST(ThermalPhysics, AdiabaticRatioIsAFunctionOfStateAndHeatsInCompression) {
 }
 
 TEST(ThermalPhysics, DamageHeatIsTheReleasedEnergyPlusTheCouplingTerm) {
-  // (ψ̄ + 3αθ₀U′(J)) Δd, 000 eq. 28 and 40.
+  // (ψ̄ + 3αθ₀U′(J)) Δd, [XLS21] eq. (28) and 40.
   const double K = 10e9, alpha = 2e-5, theta0 = 290.0, J = 1.01, psi = 3e5;
   const double expected = (psi + 3.0 * alpha * theta0 * K * std::log(J) / J) * 0.25;
   EXPECT_DOUBLE_EQ(mpm::damage_heat_density(psi, K, alpha, theta0, J, 0.25), expected);
@@ -130,7 +130,7 @@ TEST(ThermalSolver, AdiabaticCompressReleaseCycleReturnsToTheStartingTemperature
   ASSERT_FALSE(solver.step(1e-15));
   const auto& P = solver.particles();
   // Every particle sits on its own adiabat θ = θ_start exp(−3α(U′(J) − U′(1))/(ρ₀c)): the heating of
-  // the squeeze is given back exactly on release (000 eq. 39 integrated exactly, κ = 0).
+  // the squeeze is given back exactly on release ([XLS21] eq. (39) integrated exactly, κ = 0).
   double worst = 0.0;
   for (std::size_t p = 0; p < P.size(); ++p) {
     const double adiabat = 300.0 * mpm::adiabatic_temperature_ratio(K, alpha, rho, c, 1.0, 1.0, P.F[p].determinant());
@@ -235,8 +235,8 @@ TEST(ThermalSolver, ConductionMatchesTheErfcSolution) {
 }
 
 TEST(ThermalSolver, ContactFaceTemperaturesOfPressedBlocksMatchEq90) {
-  // V3: steady conduction through two pressed blocks with h_c = γ̄|p| (000 eq. 13, 90), three
-  // pressures; the contact heat uses the step's normal contact impulse (eq. 82).
+  // V3: steady conduction through two pressed blocks with h_c = γ̄|p| ([XLS21] eq. (13), (90), three
+  // pressures; the contact heat uses the step's normal contact impulse (eq. (82)).
   pipeline::VerifyOptions options;
   options.quick = true;
   const auto rows = pipeline::verify_contact_temperature(options);
@@ -290,7 +290,7 @@ double heat_after(const std::string& heat, double end_time) {
 }  // namespace
 
 TEST(ThermalBoundary, FluxThroughAThermalPlaneAddsExactlyQTimesFaceTimesTime) {
-  // 000 eq. 57: Q_i = ∫ S_i q̄ dΓ; the face length per node from ∮ S_i n dΓ = ∫ ∇S_i dV sums to
+  // [XLS21] eq. (57): Q_i = ∫ S_i q̄ dΓ; the face length per node from ∮ S_i n dΓ = ∫ ∇S_i dV sums to
   // the face, 1 mm, so the heat content grows by q̄ · 1 mm · t.
   const double heat = heat_after(R"toml(
 [[walls]]
@@ -344,7 +344,7 @@ TEST(ThermalScene, ThermalDataWithoutHeatCapacityIsRefusedWithFileLineAndKey) {
 }
 
 TEST(ThermalContact, FrictionalHeatEqualsFrictionWorkAtAWall) {
-  // A block sliding on a floor with Coulomb friction: all friction work of the wall (004 eq. 27)
+  // A block sliding on a floor with Coulomb friction: all friction work of the wall ([NBS18] eq. (27)
   // becomes heat of the block, so the heat content equals /series/friction_work.
   const char* scene = R"toml(
 [grid]
@@ -386,7 +386,7 @@ max_steps = 400
 namespace {
 
 /// Capacity-weighted projection of `body`'s particle temperatures onto the node row y (the nodal
-/// temperature of the solver's heat equation, 000 Alg. 2 line 19) for undeformed axis-aligned
+/// temperature of the solver's heat equation, [XLS21] Alg. 2 line 19) for undeformed axis-aligned
 /// particle domains of a problem uniform in x: the weight is the mean of the hat over the domain.
 /// body = −1: all bodies (the node temperature of merged fields).
 double node_row_temperature(const mpm::Particles<2>& P, int body, double y, double h) {
@@ -430,7 +430,7 @@ TEST(ThermalContact, PerfectlyConductingContactPassesTheBulkFlux) {
 
 TEST(ThermalContact, ThermalSofteningFrictionVanishesAtTheDamageTemperature) {
   // A slider pushed onto a base by gravity slides with μ(θ) = μ₀⟨θ_dam − θ⟩²/(θ_dam − θ_ref)²
-  // (000 eq. 15), θ from the nodal temperatures of the two fields: at θ_ref it does friction work,
+  // ([XLS21] eq. (15), θ from the nodal temperatures of the two fields: at θ_ref it does friction work,
   // at and above θ_dam none at all.
   const std::string scene = R"toml(
 [grid]
@@ -489,8 +489,8 @@ max_steps = 300
 TEST(ThermalSolver, TemperaturePicFractionKeepsTheRangeAndConservesHeat) {
   // Two bonded blocks at 400 K and 300 K with conductivities 100 and 0.01 W/(m K), drifting at
   // 0.1 m/s so cells come to hold both (scenes/stability/conductivity-contrast.toml). No heat source:
-  // the maximum principle bounds every temperature by [300, 400] K. The incremental update of 000
-  // eq. 62 alone carries particles past 400 K; with ζ_θ = 0.05 (the scene's value) they stay
+  // the maximum principle bounds every temperature by [300, 400] K. The incremental update of [XLS21]
+  // eq. (62) alone carries particles past 400 K; with ζ_θ = 0.05 (the scene's value) they stay
   // inside. Heat content is conserved either way.
   const std::string scene = pipeline::embedded_scene("stability/conductivity-contrast.toml");
   double hottest[2] = {0.0, 0.0};
@@ -509,6 +509,6 @@ TEST(ThermalSolver, TemperaturePicFractionKeepsTheRangeAndConservesHeat) {
     EXPECT_LT(std::abs(heat - heat0) / scale, 1e-12) << "run " << run;
     EXPECT_GE(coldest, 300.0 - 1e-9) << "run " << run;
   }
-  EXPECT_GT(hottest[0], 401.0);  // eq. 62 alone overshoots (407.8 K)
+  EXPECT_GT(hottest[0], 401.0);  // eq. (62) alone overshoots (407.8 K)
   EXPECT_LE(hottest[1], 400.0 + 1e-9);
 }

@@ -113,7 +113,7 @@ TEST(PipelineScene, DemoSceneHasAnImageBody) {
 }
 
 TEST(PipelineScene, DemoSceneCrushesSeveralGrainsBetweenPlatens) {
-  // The embedded demo on the shipped image: several grains (000 §4.5.1 needs grains to crush against
+  // The embedded demo on the shipped image: several grains ([XLS21] §4.5.1 needs grains to crush against
   // each other), a platen that moves and a stop on its travel large enough for the grains to crack —
   // at least 20 % of the window height (150 um) — reached before the end time.
   const std::string text = fp::scene_with_image(fp::embedded_scene("demo/sandstone-crush.toml"), "demo", kImage);

@@ -1,6 +1,6 @@
 // Issue 4 (thermo-mechanical coupling): the P3 disk-squish scenes and the hot-interface stability
-// scene. Frictional heat equals friction work (000 eq. 14, 82); friction vanishes at θ_dam (000
-// eq. 15).
+// scene. Frictional heat equals friction work ([XLS21] eq. (14), (82); friction vanishes at θ_dam ([XLS21]
+// eq. (15)).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -45,12 +45,12 @@ TEST(DiskSquish, ScenesParseWithTheP3Parameters) {
     const std::string name = "paper/disk-squish-" + variant + ".toml";
     const mpm::Problem<2> problem = fp::parse_scene(fp::embedded_scene(name), name);
     EXPECT_EQ(problem.body_names.size(), 3u);
-    EXPECT_NEAR(problem.particles.size(), 2900.0, 150.0) << variant;  // 000 §4.4: 2905
+    EXPECT_NEAR(problem.particles.size(), 2900.0, 150.0) << variant;  // [XLS21] §4.4: 2905
     EXPECT_DOUBLE_EQ(problem.time.fixed_dt, 2e-8);
     EXPECT_DOUBLE_EQ(problem.grid.cell_size, 1e-3);
     EXPECT_EQ(problem.thermal.active(), variant != "isothermal") << variant;
     const auto& m = problem.materials.at(0);
-    // E = 9KG/(3K + G) = 2.25 GPa, ν = 0.125 (000 Table 3).
+    // E = 9KG/(3K + G) = 2.25 GPa, ν = 0.125 ([XLS21] Table 3).
     EXPECT_NEAR(9 * m.bulk_modulus * m.shear_modulus / (3 * m.bulk_modulus + m.shear_modulus), 2.25e9, 1.0);
     EXPECT_EQ(std::holds_alternative<mpm::ThermalSofteningFriction>(problem.contact.friction),
               variant == "softening");
@@ -66,7 +66,7 @@ TEST(DiskSquish, FrictionalHeatEqualsFrictionWork) {
   EXPECT_NEAR(row.thermal, row.totals.friction_work, 1e-9 * row.totals.friction_work);
   const auto& T = solver.particles().temperature;
   EXPECT_GT(*std::max_element(T.begin(), T.end()), 293.15 + 1.0);  // the contact has warmed
-  // No cooling source without expansion; conduction rates interpolated from the grid (000 eq. 62)
+  // No cooling source without expansion; conduction rates interpolated from the grid ([XLS21] eq. (62)
   // leave an ambient particle next to a heated node within a fraction of a millikelvin (measured
   // −1.6e-4 K against a contact that warms by hundreds of kelvin).
   EXPECT_GE(*std::min_element(T.begin(), T.end()), 293.15 - 1e-3);

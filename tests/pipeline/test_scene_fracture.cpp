@@ -1,4 +1,4 @@
-// Scene keys of fracture and contact (issue 3): damage laws and strengths, the snap-back check,
+// Scene keys of fracture and contact: damage laws and strengths, the snap-back check,
 // friction laws of [contact] and walls, the [contact] table, [[loads]] tractions, and surface flags
 // where bodies touch. Bad values name file, line, key and what was expected.
 #include <gtest/gtest.h>

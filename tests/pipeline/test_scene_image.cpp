@@ -1,4 +1,4 @@
-// Scenes with bodies from a micrograph or a grain file (issue 5 item 4): every grain its own body,
+// Scenes with bodies from a micrograph or a grain file: every grain its own body,
 // particle area per grain equal to the grain's area, surface flags at every grain boundary, errors
 // with file, line and key.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // `fragmpm segment` from the command line: a good run, and every kind of bad input exits with 2
-// and a message that says what is wrong (issue 5 item 7).
+// and a message that says what is wrong.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 

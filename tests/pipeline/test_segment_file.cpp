@@ -1,4 +1,4 @@
-// Grain files (DESIGN §5): write, read back, refuse to overwrite, reject foreign files; grains as
+// Grain files (docs/design.md): write, read back, refuse to overwrite, reject foreign files; grains as
 // scene bodies from an image or a grain file.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Already-segmented input (issue 5 item 1): class masks with a boundary class and label images.
+// Already-segmented input: class masks with a boundary class and label images.
 #include <gtest/gtest.h>
 
 #include <algorithm>

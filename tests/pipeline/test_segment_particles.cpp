@@ -1,4 +1,4 @@
-// Grains → particles (issue 5 item 3): counts per grain from the area, exact surface flags on
+// Grains → particles: counts per grain from the area, exact surface flags on
 // touching grains, masses, domains, and refusals.
 #include <gtest/gtest.h>
 

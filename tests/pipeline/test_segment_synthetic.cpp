@@ -1,4 +1,4 @@
-// Segmentation of synthetic micrographs with known answers (issue 5 item 7): exact counts, areas
+// Segmentation of synthetic micrographs with known answers: exact counts, areas
 // within 2 %, touching pairs split along their neck, noise, border option, inversion, thresholds.
 #include <gtest/gtest.h>
 

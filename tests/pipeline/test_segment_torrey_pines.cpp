@@ -1,4 +1,4 @@
-// The Torrey Pines beach photograph against its hand-checked mask (issue 5 item 7): grain count and
+// The Torrey Pines beach photograph against its hand-checked mask: grain count and
 // median equivalent diameter within 10 %. The photograph is hard for a threshold — pebbles from
 // near-black to beige, packed with dark gaps — so it uses the packed-grain recipe documented in
 // images/PROVENANCE.md: gap detection, median filter, fine watershed markers with a permissive neck

@@ -1,4 +1,4 @@
-// V2 (BENCHMARKS.md; 004 §3, appendix eq. 46-54): the rigid-block oracle against direct numerical
+// V2 (docs/verification.md; [NBS18] §3, appendix eq. (46)-(54)): the rigid-block oracle against direct numerical
 // integration of the block's equation of motion, the loading of the paper recomputed, and the
 // coarsest MPM level for Coulomb friction within 2 % of the oracle.
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@ using namespace fragmpm::pipeline;
 
 namespace {
 
-// 004 §3: ρ = 1 g/cm³, h = 15 mm, l = 40 mm, μ = 0.2, R = 1, v_max = 2 % of √(E/ρ), E = 2500 MPa,
+// [NBS18] §3: ρ = 1 g/cm³, h = 15 mm, l = 40 mm, μ = 0.2, R = 1, v_max = 2 % of √(E/ρ), E = 2500 MPa,
 // 85 mm of sliding, t1 = t2 = t_f/4.
 const double v_max = 0.02 * std::sqrt(2.5e9 / 1000.0);
 SlidingBlockLoading paper_loading() {
@@ -25,7 +25,7 @@ SlidingBlockLoading paper_loading() {
 TEST(SlidingBlockOracle, LoadingOfThePaper) {
   const SlidingBlockLoading b = paper_loading();
   EXPECT_NEAR(v_max, 31.62, 0.01);
-  EXPECT_NEAR(b.normal_stress, 0.147e6, 0.001e6);  // "N ≈ 0.147 MPa" (BENCHMARKS V2)
+  EXPECT_NEAR(b.normal_stress, 0.147e6, 0.001e6);  // "N ≈ 0.147 MPa" (V2 in docs/verification.md)
   EXPECT_NEAR(b.end_time, 13.44e-3, 0.01e-3);      // "t_f ≈ 13.45 ms"
   EXPECT_NEAR(b.tangential_start, 0.25 * b.end_time, 1e-15);
   // The Coulomb block reaches v_max having slid 85 mm at t_f.
@@ -34,7 +34,7 @@ TEST(SlidingBlockOracle, LoadingOfThePaper) {
   EXPECT_NEAR(rigid_block_velocity(b, *coulomb, b.end_time), v_max, 1e-9 * v_max);
   const RigidBlockState s = integrate_rigid_block(b, mpm::CoulombFriction{0.2}, b.end_time, 20000);
   EXPECT_NEAR(s.distance, 0.085, 1e-9);
-  // Onset at S = μN (eq. 47): t_i = t2 + 0.2 t_s.
+  // Onset at S = μN (eq. (47)): t_i = t2 + 0.2 t_s.
   EXPECT_NEAR(rigid_block_onset(b, *coulomb), b.tangential_start + 0.2 * (b.end_time - b.tangential_start), 1e-15);
 }
 
@@ -63,7 +63,7 @@ TEST(SlidingBlockOracle, ClosedFormsMatchNumericalIntegration) {
 }
 
 TEST(SlidingBlockOracle, SmoothLawSpansStaticAndDynamic) {
-  // 004 Fig. 4: large v½ slides like μ = μ_s, small v½ like the sharp static/dynamic law.
+  // [NBS18] Fig. 4: large v½ slides like μ = μ_s, small v½ like the sharp static/dynamic law.
   const SlidingBlockLoading b = paper_loading();
   const double t = b.end_time;
   const double slow = integrate_rigid_block(b, mpm::SmoothStaticDynamicFriction{0.4, 0.2, 1e6}, t, 20000).velocity;
@@ -87,7 +87,7 @@ TEST(VerifySlidingBlock, CoarsestCoulombLevelWithinTwoPercent) {
 
 TEST(VerifySlidingBlock, CoarsestAdhesionLevelWithinTwoPercent) {
   // The adhesion force S_a A scales with the contact area summed over the interface nodes. From the
-  // fields' volume gradients that sum is the block length; 004 eq. 11 over-estimates it at the
+  // fields' volume gradients that sum is the block length; [NBS18] eq. (11) over-estimates it at the
   // block's end nodes (0.61 h instead of h/2), which made this case 4.9 % slow at 5 mm.
   const auto rows = verify_sliding_block_level("adhesion", 0, 5e-3);
   ASSERT_EQ(rows.size(), 2u);

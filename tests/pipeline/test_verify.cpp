@@ -1,4 +1,4 @@
-// V1 (BENCHMARKS.md): the bar's centre-of-mass velocity error against the closed form must fall
+// V1 (docs/verification.md): the bar's centre-of-mass velocity error against the closed form must fall
 // with h at first order or better, for CPDI and linear shape functions.
 #include <gtest/gtest.h>
 

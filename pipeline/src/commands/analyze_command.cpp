@@ -1,5 +1,5 @@
 // `fragmpm analyze RUN.h5 [--at TIMES|--at-displacement DISPLACEMENTS] [--frame N] [--platen NAME]
-// [-o DIR] [--d-mask 0.99] [--min-particles 4]` (DESIGN §8; issue 6 item 3). The work is analyze_run.
+// [-o DIR] [--d-mask 0.99] [--min-particles 4]` (docs/design.md). The work is analyze_run.
 #include <cstdio>
 #include <memory>
 

@@ -1,5 +1,5 @@
 // `fragmpm bench`: particle-steps per second next to a memory-bandwidth reference loop timed in the
-// same process (DESIGN §7), so that the ratio can be compared across machines.
+// same process (docs/design.md), so that the ratio can be compared across machines.
 #include <omp.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// `fragmpm demo [-o DIR]` (issue 6 item 5): the pipeline on the embedded scene
+// `fragmpm demo [-o DIR]`: the pipeline on the embedded scene
 // scenes/demo/sandstone-crush.toml and the Miocene sandstone grain mask. The scene is compiled into
 // the program; the image is found on disk, first under $FRAGMPM_SOURCE_DIR/images, then in an
 // images/ folder beside the executable or any folder above it (./build/fragmpm of a clone finds

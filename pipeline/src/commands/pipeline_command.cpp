@@ -1,5 +1,5 @@
-// `fragmpm pipeline IMAGE --scene SCENE.toml -o DIR [--overwrite] [--threads N]` (DESIGN §8, issue 6
-// item 5): the scene is used as it is, except that IMAGE becomes the micrograph of every [[bodies]]
+// `fragmpm pipeline IMAGE --scene SCENE.toml -o DIR [--overwrite] [--threads N]` (docs/design.md):
+// the scene is used as it is, except that IMAGE becomes the micrograph of every [[bodies]]
 // entry with an `image` key, so the scene keeps the segmentation options (pixel size, input kind,
 // crop, threshold) that fit its image. DIR receives
 //   segmentation.png            the segmentation preview of each image body (segmentation_N.png if several)

@@ -1,5 +1,5 @@
 // `fragmpm render RUN.h5 --field damage|temperature|speed|stress|body|fragment [--frame N|last] -o fig.png`
-// and `fragmpm render RUN.h5 --series energy|force-displacement -o fig.png` (DESIGN §6, §8): off-screen
+// and `fragmpm render RUN.h5 --series energy|force-displacement -o fig.png` (docs/design.md): off-screen
 // figures of one frame or of the run's /series, with no display needed.
 #include <cctype>
 #include <cstdio>
@@ -85,7 +85,7 @@ void require_datasets(const mpm::RunFileReader& file, int index, const std::vect
 }
 
 void render_field(const RenderArguments& a) {
-  // Fragments are labelled as `fragmpm analyze` does with its default options (DESIGN §6): frame 0
+  // Fragments are labelled as `fragmpm analyze` does with its default options (docs/design.md): frame 0
   // is the reference configuration whose neighbours may stay bonded.
   const bool fragments = a.field == fragment_field;
   const analysis::FrameField field = fragments ? analysis::FrameField::damage : analysis::parse_frame_field(a.field);

@@ -1,5 +1,5 @@
 // `fragmpm segment IMAGE --pixel-size 1um [options] -o grains.h5 [--preview preview.png]`
-// (DESIGN §8, issue 5): micrograph → grains → particles → grain file and preview.
+// (docs/design.md): micrograph → grains → particles → grain file and preview.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,5 @@
 // [[bodies]] from a micrograph or a grain file: segmentation options from the entry's keys, grains
-// sampled at the scene's cell size, every grain its own body (issue 5 item 4; scenes/README.md).
+// sampled at the scene's cell size, every grain its own body (scenes/README.md).
 #include "scene_grains.hpp"
 
 #include <algorithm>

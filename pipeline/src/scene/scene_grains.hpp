@@ -1,6 +1,6 @@
 #pragma once
 // Private to the scene compiler: [[bodies]] entries whose grains come from a micrograph
-// (`image = "…"`) or a grain file (`grains = "grains.h5"`) instead of a shape (issue 5 item 4).
+// (`image = "…"`) or a grain file (`grains = "grains.h5"`) instead of a shape.
 #include <string>
 #include <vector>
 

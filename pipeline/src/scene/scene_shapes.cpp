@@ -186,7 +186,7 @@ SampleResult sample_bodies(const std::vector<BodySample>& bodies,
         const std::int64_t i = sites[k].i + di, j = sites[k].j + dj;
         // Beyond a symmetry plane the neighbour is the mirror image of a point of the model:
         // present when that image lies in this body. The plane is then no surface, as in the full
-        // (unmirrored) body, so the damage field does not partition the body along it (001 §2.4
+        // (unmirrored) body, so the damage field does not partition the body along it ([HH17] §2.4
         // flags the surfaces that may open or touch; a face on a bilateral roller can do neither).
         const Vec2 q = point(i, j);
         bool mirrored = false;

@@ -92,7 +92,7 @@ void compile_thermal(mpm::Problem<2>& problem, const std::vector<Section>& mater
     reason = "load '" + problem.thermal.edge_loads.front().name + "' puts heat into a body";
   if (reason.empty() && !wall_conditions.empty())
     reason = "wall '" + wall_conditions.front().name + "' has a thermal condition";
-  if (reason.empty()) return;  // module off: no thermal arrays (DESIGN §4)
+  if (reason.empty()) return;  // module off: no thermal arrays (docs/design.md)
 
   problem.thermal.reason = reason;
   std::vector<double> initial(material_sections.size(), kDefaultTemperature);

@@ -27,7 +27,7 @@ void check_body_in_domain(const BodyEntry& body, const mpm::GridSpec<2>& grid);
 /// warnings on stderr for overlapping bodies.
 void check_sampling(const std::vector<BodyEntry>& bodies, const SampleResult& result, double spacing);
 
-/// Error when a fixed Δt exceeds the stability limit at C_cfl = 1 (DESIGN §4 "Time step").
+/// Error when a fixed Δt exceeds the stability limit at C_cfl = 1 (docs/design.md "Time step").
 void check_fixed_dt(const mpm::Problem<2>& problem, const Section& time);
 
 }  // namespace fragmpm::pipeline::scene_detail

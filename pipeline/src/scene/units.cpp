@@ -1,4 +1,4 @@
-// Quantity strings → SI numbers (DESIGN §3). A small hand-written reader: units are products of
+// Quantity strings → SI numbers (docs/design.md). A small hand-written reader: units are products of
 // prefixed symbols with integer powers, tracked as exponents of the base dimensions so that any
 // spelling of a unit of the right kind is accepted ("kg/m3", "g/cm3", "g cm^-3").
 #include "fragmpm/pipeline/units.hpp"

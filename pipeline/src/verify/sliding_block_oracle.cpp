@@ -1,4 +1,4 @@
-// Rigid-block oracle of V2 (004 appendix eq. 46-54).
+// Rigid-block oracle of V2 ([NBS18] appendix eq. (46)-(54)).
 #include "fragmpm/pipeline/sliding_block_oracle.hpp"
 
 #include <algorithm>
@@ -17,14 +17,14 @@ struct Rates {
 
 double ramp_duration(const SlidingBlockLoading& b) { return b.end_time - b.tangential_start; }  // t_s
 
-Rates rates(const SlidingBlockLoading& b, const RigidBlockFriction& f) {  // eq. 49
+Rates rates(const SlidingBlockLoading& b, const RigidBlockFriction& f) {  // eq. (49)
   const double mass_per_area = b.density * b.height;
   return {b.ratio * b.normal_stress / (mass_per_area * ramp_duration(b)),
           (f.static_coefficient - f.dynamic_coefficient) * b.normal_stress / mass_per_area,
           f.slope * b.normal_stress / mass_per_area};
 }
 
-/// Friction traction S_slide(v) of a law on the block [Pa] (eq. 41; 004 eq. 42; 000 eq. 15 at θ_ref).
+/// Friction traction S_slide(v) of a law on the block [Pa] (eq. (41); [NBS18] eq. (42); [XLS21] eq. (15) at θ_ref).
 double sliding_traction(const mpm::FrictionLaw& law, double normal_stress, double speed) {
   struct Visitor {
     double n, v;
@@ -45,7 +45,7 @@ SlidingBlockLoading sliding_block_loading(double density, double height, double 
                                           double coulomb_coefficient, double ratio,
                                           double final_speed, double distance, double ramp_fraction) {
   const double sliding_time = 3.0 * distance / final_speed;                    // T = 3x/v
-  const double ramp = sliding_time / (1.0 - coulomb_coefficient / ratio);      // t_s, from eq. 47
+  const double ramp = sliding_time / (1.0 - coulomb_coefficient / ratio);      // t_s, from eq. (47)
   SlidingBlockLoading b;
   b.density = density;
   b.height = height;
@@ -55,7 +55,7 @@ SlidingBlockLoading sliding_block_loading(double density, double height, double 
   b.tangential_start = ramp_fraction * b.end_time;
   b.normal_ramp_end = b.tangential_start;
   const double alpha = 2.0 * final_speed / (sliding_time * sliding_time);     // v = αT²/2
-  b.normal_stress = alpha * density * height * ramp / ratio;                  // eq. 49
+  b.normal_stress = alpha * density * height * ramp / ratio;                  // eq. (49)
   return b;
 }
 
@@ -74,16 +74,16 @@ std::optional<RigidBlockFriction> rigid_block_friction(const mpm::FrictionLaw& l
 double rigid_block_onset(const SlidingBlockLoading& b, const RigidBlockFriction& f) {
   if (!(b.ratio > 0.0) || !(b.normal_stress > 0.0)) return std::numeric_limits<double>::infinity();
   return b.tangential_start +
-         (f.static_coefficient + f.adhesion / b.normal_stress) * ramp_duration(b) / b.ratio;  // eq. 47
+         (f.static_coefficient + f.adhesion / b.normal_stress) * ramp_duration(b) / b.ratio;  // eq. (47)
 }
 
 double rigid_block_velocity(const SlidingBlockLoading& b, const RigidBlockFriction& f, double t) {
   const double T = t - rigid_block_onset(b, f);
   if (!(T > 0.0)) return 0.0;
   const Rates r = rates(b, f);
-  if (r.gamma == 0.0) return 0.5 * r.alpha * T * T + r.beta * T;  // eq. 50, k = 0
-  const double psi = r.alpha / r.gamma, phi = (r.beta - psi) / r.gamma;  // eq. 51
-  return psi * T + phi * -std::expm1(-r.gamma * T);                     // eq. 50, k ≠ 0
+  if (r.gamma == 0.0) return 0.5 * r.alpha * T * T + r.beta * T;  // eq. (50), k = 0
+  const double psi = r.alpha / r.gamma, phi = (r.beta - psi) / r.gamma;  // eq. (51)
+  return psi * T + phi * -std::expm1(-r.gamma * T);                     // eq. (50), k ≠ 0
 }
 
 double rigid_block_friction_work(const SlidingBlockLoading& b, const RigidBlockFriction& f, double t) {
@@ -91,12 +91,12 @@ double rigid_block_friction_work(const SlidingBlockLoading& b, const RigidBlockF
   if (!(T > 0.0)) return 0.0;
   const Rates r = rates(b, f);
   const double constant_part = f.dynamic_coefficient * b.normal_stress + f.adhesion;  // μ_d N + S_a
-  if (r.gamma == 0.0)  // eq. 53
+  if (r.gamma == 0.0)  // eq. (53)
     return b.length * constant_part * (r.alpha * T * T * T / 6.0 + 0.5 * r.beta * T * T);
-  // k ≠ 0: Q/(l b) = (μ_d N + S_a) ∫v dt + k N ∫v² dt with v = ψT + φ(1 − e^{−γT}) (eq. 50, 52):
+  // k ≠ 0: Q/(l b) = (μ_d N + S_a) ∫v dt + k N ∫v² dt with v = ψT + φ(1 − e^{−γT}) (eq. (50), (52)):
   //   ∫v  = ψT²/2 + φ (T − (1 − e^{−γT})/γ)
   //   ∫v² = ψ²T³/3 + φ² (T − (3 − 4e^{−γT} + e^{−2γT})/(2γ)) + ψφ (T² − 2(1 − (1 + γT) e^{−γT})/γ²).
-  // (The printed eq. 54 swaps ψ and φ in the first bracket and leaves the ψφ term outside k N.)
+  // (The printed eq. (54) swaps ψ and φ in the first bracket and leaves the ψφ term outside k N.)
   const double g = r.gamma, psi = r.alpha / g, phi = (r.beta - psi) / g;
   const double one_minus_e1 = -std::expm1(-g * T), e1 = std::exp(-g * T), e2 = std::exp(-2.0 * g * T);
   const double integral_v = 0.5 * psi * T * T + phi * (T - one_minus_e1 / g);
@@ -109,7 +109,7 @@ RigidBlockState integrate_rigid_block(const SlidingBlockLoading& b, const mpm::F
                                       int steps) {
   RigidBlockState s;
   const double n = b.normal_stress, mass_per_area = b.density * b.height, ramp = ramp_duration(b);
-  // Onset when S(t) = R N (t − t₂)/t_s reaches the resistance at rest (eq. 46-47).
+  // Onset when S(t) = R N (t − t₂)/t_s reaches the resistance at rest (eq. (46)-(47)).
   s.onset = b.tangential_start + sliding_traction(law, n, 0.0) * ramp / (b.ratio * n);
   if (!(t > s.onset) || steps < 1) return s;
   // y = (v, x, Q/b): v̇ = (S(t) − S_slide(v))/(ρ h), ẋ = v, Q̇/b = l S_slide(v) v.

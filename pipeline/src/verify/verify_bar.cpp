@@ -1,4 +1,4 @@
-// V1: axial vibration of an elastic bar (BENCHMARKS.md). Exact solution of the 1D wave equation
+// V1: axial vibration of an elastic bar (docs/verification.md). Exact solution of the 1D wave equation
 // with a fixed end at x = 0 and a free end at x = L in its first mode:
 //   v(x, t) = v0 cos(ωt) sin(βx),  β = π/(2L),  ω = β sqrt(E/ρ)   (ν = 0, so plane strain is 1D),
 // whose centre-of-mass velocity is v_cm(t) = (1/L)∫ v dx = v0 cos(ωt) · 2/π.

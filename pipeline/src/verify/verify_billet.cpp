@@ -1,4 +1,4 @@
-// P2: self-contact equals multi-body contact (001 §3.1, Table I, Fig. 9). The same billet/platen
+// P2: self-contact equals multi-body contact ([HH17] §3.1, Table I, Fig. 9). The same billet/platen
 // scene runs with damage-field-gradient self-contact (surface flags), with two a-priori bodies
 // (multimaterial contact), and with one velocity field. Metric: the largest difference of particle
 // horizontal velocities between a run and the two-body run, over the two-body run's peak horizontal
@@ -60,7 +60,7 @@ std::vector<VerifyRow> verify_billet(const VerifyOptions& options) {
       r.value = largest / peak;
       r.reference = 0.0;
       r.error = r.value;
-      // BENCHMARKS P2: self-contact within 5 % of the peak; the single field must differ clearly.
+      // P2 in docs/verification.md: self-contact within 5 % of the peak; the single field must differ clearly.
       if (variant == "auto") r.target_high = 0.05;
       else r.target_low = 0.05;
       rows.push_back(r);

@@ -1,9 +1,9 @@
-// V4: one-dimensional heat conduction from a temperature step (BENCHMARKS.md). The strip of
+// V4: one-dimensional heat conduction from a temperature step (docs/verification.md). The strip of
 // scenes/verify/conduction.toml holds θ_left for x < x_step and θ_left + Δθ beyond at t = 0; the
 // exact answer of the infinite slab is
 //   θ(x, t) = θ_left + Δθ/2 · erfc(−(x − x_step) / (2 √(a t))),  a = κ / (ρ c).
 // The particles start from this answer at t₀ = 0.25 ms (spread 2√(a t₀) = 1 mm, two cells at the
-// coarsest level) rather than from the raw step: the particle update of 000 eq. (62) adds only
+// coarsest level) rather than from the raw step: the particle update of [XLS21] eq. (62) adds only
 // grid-interpolated increments, so the part of a sampled discontinuity that the grid cannot
 // represent (the jump between two particles of one cell) stays in the particles forever — a step
 // sampled at particles keeps an error of about Δθ/3 next to the jump at every resolution.

@@ -1,4 +1,4 @@
-// V3: contact-face temperatures across a pressed interface (BENCHMARKS.md; 000 §4.2, eq. 90).
+// V3: contact-face temperatures across a pressed interface (docs/verification.md; [XLS21] §4.2, eq. (90)).
 // Steady conduction through two blocks of length l with a contact conductance h_c between them,
 // the outer faces at θ_hot and θ_cool: with κ̄ = h_c l / κ the faces of the interface sit at
 //   θ₁ = ((1 + κ̄) θ_hot + κ̄ θ_cool) / (1 + 2κ̄)  (upper block),
@@ -24,10 +24,10 @@ constexpr double block = 2.5e-3;  // l [m], as in scenes/verify/contact-temperat
 constexpr double hot = 323.15, cool = 293.15;  // [K]
 
 /// Temperature of `body`'s field at the interface nodes: the capacity-weighted projection
-/// Σ S̄_ip m_p θ_p / Σ S̄_ip m_p onto the node row y = l (000 Alg. 2 line 19), which is what the
+/// Σ S̄_ip m_p θ_p / Σ S̄_ip m_p onto the node row y = l ([XLS21] Alg. 2 line 19), which is what the
 /// solver's heat equation holds there. Along y the CPDI weight of an undeformed, axis-aligned
 /// particle domain [y_p − a/2, y_p + a/2] is the mean of the hat over it; the problem is uniform in x.
-/// (The particles' own values carry the grid-invisible remnant of eq. 62 updates, see
+/// (The particles' own values carry the grid-invisible remnant of eq. (62) updates, see
 /// verify_conduction.cpp, and are not the field the equation solves for.)
 double face_temperature(const mpm::Particles<2>& P, int body, double cell_size) {
   auto hat_mean = [&](double lo, double hi) {  // mean over [lo, hi] of max(0, 1 − |y − l|/h)
@@ -54,7 +54,7 @@ std::vector<VerifyRow> run_level(double kappa_bar, int level, double cell_size) 
                      {{"grid.cell_size", toml_number(cell_size)}, {"output.interval", "0.0"}});
   mpm::Problem<2> problem = parse_scene(text, "scenes/verify/contact-temperature.toml");
   const double kappa = problem.thermal.materials.at(0).conductivity;
-  const double gamma = problem.thermal.contact_conductance / problem.thermal.contact_pressure;  // γ̄ (eq. 13)
+  const double gamma = problem.thermal.contact_conductance / problem.thermal.contact_pressure;  // γ̄ (eq. (13))
   const double pressure = kappa_bar * kappa / (block * gamma);  // h_c = γ̄ p = κ̄ κ / l
   problem.loads.at(0).tractions.at(0) = mpm::Vec<2>(0.0, -pressure);
   const double end_time = problem.stop.end_time;

@@ -1,7 +1,7 @@
-// P3: disk squish with frictional heating (BENCHMARKS.md; 000 §4.4, Table 3; layout after 001
+// P3: disk squish with frictional heating (docs/verification.md; [XLS21] §4.4, Table 3; layout after [HH17]
 // Fig. 9). Three variants of scenes/paper/disk-squish-*.toml: isothermal (no thermal module,
 // Coulomb μ = 0.4), coupled (thermal module, Coulomb μ = 0.4: frictional and structural heating,
-// friction independent of temperature) and softening (thermal module, μ(θ) of 000 eq. 15).
+// friction independent of temperature) and softening (thermal module, μ(θ) of [XLS21] eq. (15).
 // Metrics per variant: the peak contact temperature (the hottest particle over the run; frictional
 // heat enters at the contact nodes and the run is near the adiabatic limit, so the hottest
 // particles are the contact particles — structural heating alone is about 1 K), the mean speed of
@@ -26,7 +26,7 @@ namespace fragmpm::pipeline {
 
 namespace {
 
-constexpr double published_peak = 900.0 + 273.15;  // [K], 000 §4.4 / Fig. 14(b)
+constexpr double published_peak = 900.0 + 273.15;  // [K], [XLS21] §4.4 / Fig. 14(b)
 
 struct SquishResult {
   double peak_temperature = std::numeric_limits<double>::quiet_NaN();  ///< [K], NaN without thermal module
@@ -123,22 +123,22 @@ std::vector<VerifyRow> verify_disk_squish(const VerifyOptions& options) {
   add("isothermal", iso, "disk_speed_m_s (end)", iso.disk_speed, nan, -inf, inf);
   add("isothermal", iso, "disk_rise_mm (largest)", 1e3 * iso.disk_rise, nan, -inf, inf);
   add("isothermal", iso, "friction_work_J_per_m", iso.friction_work, nan, -inf, inf);
-  // Published: above 900 °C without softening (000 §4.4, Fig. 14b).
+  // Published: above 900 °C without softening ([XLS21] §4.4, Fig. 14b).
   add("coupled", coupled, "peak_contact_temperature_K (target > 1173.15)", coupled.peak_temperature,
       published_peak, published_peak, inf);
   add("coupled", coupled, "peak_time_s", coupled.peak_time, nan, -inf, inf);
   add("coupled", coupled, "disk_speed_m_s (end)", coupled.disk_speed, iso.disk_speed, -inf, inf);
-  // Published: μ = 0.4 holds the disk against the block's side (000 §4.4, Fig. 13d): its centre
+  // Published: μ = 0.4 holds the disk against the block's side ([XLS21] §4.4, Fig. 13d): its centre
   // stays below the block's top corner, 12.13 − 7 = 5.13 mm above its start in the scenes.
   add("coupled", coupled, "disk_rise_mm (largest; target < 5.13)", 1e3 * coupled.disk_rise, 1e3 * iso.disk_rise, -inf,
       5.13);
   add("coupled", coupled, "friction_work_J_per_m", coupled.friction_work, nan, -inf, inf);
-  // Frictional heat is the friction work (000 eq. 14, 82); thermo-elastic and coupling heating add
+  // Frictional heat is the friction work ([XLS21] eq. (14), (82); thermo-elastic and coupling heating add
   // a little (reference = friction work).
   add("coupled", coupled, "heat_content_J_per_m (vs friction work)", coupled.heat, coupled.friction_work, -inf, inf);
   add("softening", soft, "peak_contact_temperature_K", soft.peak_temperature, coupled.peak_temperature, -inf, inf);
   add("softening", soft, "peak_time_s", soft.peak_time, nan, -inf, inf);
-  // Published: with softening the disk squeezes out and moves faster (000 §4.4, Fig. 13f).
+  // Published: with softening the disk squeezes out and moves faster ([XLS21] §4.4, Fig. 13f).
   add("softening", soft, "disk_speed_m_s (end; target > coupled)", soft.disk_speed, coupled.disk_speed,
       coupled.disk_speed, inf);
   add("softening", soft, "disk_rise_mm (largest; target > coupled)", 1e3 * soft.disk_rise, 1e3 * coupled.disk_rise,

@@ -1,12 +1,12 @@
-// P1: Kalthoff–Winkler (000 §4.3; 001 §3.2). Metrics: the crack angle against the notch direction
-// (published 59° (001), ~67° (000), 70° experiment; target 58-72°) and the crack speed (001:
+// P1: Kalthoff–Winkler ([XLS21] §4.3; [HH17] §3.2). Metrics: the crack angle against the notch direction
+// (published 59° ([HH17]), ~67° ([XLS21]), 70° experiment; target 58-72°) and the crack speed ([HH17]:
 // 2.0 km/s; target 1.6-2.4 km/s).
 //
 // The crack is the set of fully damaged plate particles ahead of and above the notch tip. Its
 // direction is the principal axis, through the tip, of those particles 3-30 mm from the tip at the
 // end; the tip position at each sampled time is the farthest of them along that axis (within 4 mm
 // of it). The speed is the least-squares slope of tip distance against time over 40-50 µs, the
-// window in which 001 §3.2 quotes 2.0 km/s.
+// window in which [HH17] §3.2 quotes 2.0 km/s.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -55,7 +55,7 @@ mpm::Vec<2> crack_direction(const std::vector<mpm::Vec<2>>& cracked) {
 }
 
 /// Variants: "particle-size" runs the scene as it is (l_ch = particle size, the band width that
-/// dissipates G_f per crack area); "paper-l_ch" sets l_ch = cell diagonal as in 001 Table II
+/// dissipates G_f per crack area); "paper-l_ch" sets l_ch = cell diagonal as in [HH17] Table II
 /// (1.414 mm at h = 1 mm), a crack 2√2 times less tough at 2 particles per cell.
 std::vector<VerifyRow> run_level(int level, double cell_size, const std::string& variant) {
   std::map<std::string, std::string> overrides{{"grid.cell_size", toml_number(cell_size)},
@@ -84,7 +84,7 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
   }
   angle.value = std::atan2(axis[1], axis[0]) * 180.0 / std::numbers::pi;
   angle.error = relative_error(angle.value, angle.reference);
-  angle.target_low = 58.0;  // BENCHMARKS P1
+  angle.target_low = 58.0;  // P1 in docs/verification.md
   angle.target_high = 72.0;
   rows.push_back(angle);
   // Tip distance along the axis over time, then a least-squares speed.
@@ -97,7 +97,7 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
       const double along = r.dot(axis);
       if ((r - along * axis).norm() <= 4e-3) tip = std::max(tip, along);
     }
-    // 001 §3.2 quotes the speed over 40 µs < t < 50 µs (after Belytschko et al.); the crack then
+    // [HH17] §3.2 quotes the speed over 40 µs < t < 50 µs (after Belytschko et al.); the crack then
     // slows as it turns towards the top edge, so a fit over the whole path would be another number.
     if (sample.time < 40e-6 * (1.0 - 1e-9) || sample.time > 50e-6 * (1.0 + 1e-9) || tip <= 0.0) continue;
     st += sample.time;
@@ -107,7 +107,7 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
     ++n;
   }
   VerifyRow speed = angle;
-  speed.metric = "crack_speed_m/s (reference: 2000 from 001; target 1600-2400)";
+  speed.metric = "crack_speed_m/s (reference: 2000 from [HH17]; target 1600-2400)";
   speed.reference = 2000.0;
   speed.value = n >= 2 ? (n * stl - st * sl) / (n * stt - st * st) : 0.0;
   speed.error = relative_error(speed.value, speed.reference);

@@ -1,4 +1,4 @@
-// V6: fracture energy of a notched bar struck by a disk (001 §3.3, Table III, Fig. 12-13).
+// V6: fracture energy of a notched bar struck by a disk ([HH17] §3.3, Table III, Fig. 12-13).
 // Oracle: the energy the damage law dissipates equals G_f × the crack length actually formed (per
 // unit thickness in plane strain). The formed length is measured from the fully damaged particles
 // in the ligament above the notch. A second metric is the total mechanical energy lost,
@@ -35,7 +35,7 @@ double formed_crack_length(const mpm::Particles<2>& P, double spacing) {
   return std::min(bar_height - notch_depth, highest - lowest + spacing);
 }
 
-/// partitioning "auto" or "off"; paper_length: l_ch = cell diagonal as in 001 Table III instead of
+/// partitioning "auto" or "off"; paper_length: l_ch = cell diagonal as in [HH17] Table III instead of
 /// the particle size (the band width that dissipates G_f per crack area).
 std::vector<VerifyRow> run_level(int level, double cell_size, const std::string& partitioning,
                                  bool paper_length) {
@@ -68,7 +68,7 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
   damage.value = row.totals.dissipated;
   damage.reference = fracture_energy * crack;
   damage.error = relative_error(damage.value, damage.reference);
-  if (partitioning == "auto" && !paper_length) {  // BENCHMARKS V6: within 15 % at h = 1 mm
+  if (partitioning == "auto" && !paper_length) {  // V6 in docs/verification.md: within 15 % at h = 1 mm
     damage.target_low = 0.85 * damage.reference;
     damage.target_high = 1.15 * damage.reference;
   }
@@ -93,7 +93,7 @@ std::vector<VerifyRow> verify_notched_bar(const VerifyOptions& options) {
     for (std::size_t level = 0; level < cells.size(); ++level)
       for (auto& r : run_level(static_cast<int>(level), cells[level], partitioning, false))
         rows.push_back(std::move(r));
-  // 001 Table III's l_ch = 1.414 mm at the paper's 1 mm grid, for comparison with the paper.
+  // [HH17] Table III's l_ch = 1.414 mm at the paper's 1 mm grid, for comparison with the paper.
   for (auto& r : run_level(0, cells[0], "auto", true)) rows.push_back(std::move(r));
   return rows;
 }

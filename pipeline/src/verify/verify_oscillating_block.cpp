@@ -1,8 +1,8 @@
-// V7: oscillating-block frictional heating (BENCHMARKS.md; 004 §3, Fig. 6-7). The scene
-// scenes/verify/oscillating-block.toml is run at fixed steps Δt = C Δx / v (004 eq. 45, v the bulk
-// wave speed) over CFL factors C, with second-order (004 eq. 31-36) and first-order (eq. 27)
+// V7: oscillating-block frictional heating (docs/verification.md; [NBS18] §3, Fig. 6-7). The scene
+// scenes/verify/oscillating-block.toml is run at fixed steps Δt = C Δx / v ([NBS18] eq. (45), v the bulk
+// wave speed) over CFL factors C, with second-order ([NBS18] eq. (31)-(36) and first-order (eq. (27))
 // frictional work. Metric: the friction work of the driven interval, W(t_end) − W(t1), per unit
-// thickness. There is no closed form (004 §3); the reference is the second-order value at the
+// thickness. There is no closed form ([NBS18] §3); the reference is the second-order value at the
 // smallest C run, the stand-in for the limit C → 0. The work done by the driving walls over the
 // same interval is reported beside it: the friction work can converge no faster than the
 // mechanical response it is taken from.
@@ -14,7 +14,7 @@
 // outside the block's bottom corners, where the block's field holds 1.5-3 % of the node's mass and
 // its trial velocity (p + f Δt)/m differs from the base's by tens of m/s; it grows as C falls.
 // N = 2 MPa (the scene's value) gives the
-// stick–slide–stick interval 004 §3 describes, with the whole interface slipping about 65 µm;
+// stick–slide–stick interval [NBS18] §3 describes, with the whole interface slipping about 65 µm;
 // N = 5 MPa gives partial slip from the edges only, the hardest case for the stick/slip decision.
 #include <cmath>
 #include <cstdio>
@@ -43,7 +43,7 @@ struct CycleRun {
   std::unique_ptr<mpm::Solver<2>> solver;
 };
 
-/// The bulk (dilatational) wave speed √((K + 4G/3)/ρ) of 004 eq. 45: 1924 m/s for this material.
+/// The bulk (dilatational) wave speed √((K + 4G/3)/ρ) of [NBS18] eq. (45): 1924 m/s for this material.
 double bulk_wave_speed(const mpm::MaterialSpec& m) {
   return std::sqrt((m.bulk_modulus + 4.0 * m.shear_modulus / 3.0) / m.density);
 }
@@ -85,7 +85,7 @@ CycleRun run_cycle(double courant, mpm::FrictionWorkOrder order, double normal_s
 }  // namespace
 
 std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options) {
-  // Halving C from 0.5; 004 Fig. 7 spans the same decade and a half. Partial slip (5 MPa) settles
+  // Halving C from 0.5; [NBS18] Fig. 7 spans the same decade and a half. Partial slip (5 MPa) settles
   // only below C = 1/64, so its full series goes one level further.
   const std::vector<double> quick{0.5, 0.25, 0.125};
   const std::vector<double> full{0.5, 0.25, 0.125, 0.0625, 0.03125, 0.015625};
@@ -140,7 +140,7 @@ std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options) {
       } else {
         f.reference = friction_reference;
         f.error = relative_error(f.value, f.reference);
-        // BENCHMARKS V7: second-order heating within 2 % of the limit at C = 0.5 (level 0), here
+        // V7 in docs/verification.md: second-order heating within 2 % of the limit at C = 0.5 (level 0), here
         // for the stick–slide–stick interval (2 MPa); partial slip (5 MPa) is reported beside it.
         if (second && k == 0 && variant.normal_stress == 2e6) {
           f.target_low = 0.98 * f.reference;

@@ -1,7 +1,7 @@
-// V2: sliding block with four friction laws (BENCHMARKS.md; 004 §3, Fig. 2-5, appendix eq. 46-54).
+// V2: sliding block with four friction laws (docs/verification.md; [NBS18] §3, Fig. 2-5, appendix eq. (46)-(54)).
 // The elastic block of scenes/verify/sliding-block.toml is compared at the end of the tangential
-// ramp t_f with a rigid block under the same loads: its mean velocity against eq. 50-51 and the
-// accumulated friction work against eq. 52-53 (the rigid-block oracle of sliding_block_oracle.hpp).
+// ramp t_f with a rigid block under the same loads: its mean velocity against eq. (50)-(51) and the
+// accumulated friction work against eq. (52)-(53) (the rigid-block oracle of sliding_block_oracle.hpp).
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -20,13 +20,13 @@ namespace {
 
 constexpr double block_length = 0.040;   // l [m], as in the scene
 constexpr double block_height = 0.015;   // h [m]
-constexpr double slide_distance = 0.085; // Coulomb slide at t_f [m] (004 §3)
+constexpr double slide_distance = 0.085; // Coulomb slide at t_f [m] ([NBS18] §3)
 constexpr double coulomb_coefficient = 0.2;
 constexpr double load_ratio = 1.0;       // R
 constexpr double ramp_fraction = 0.25;   // t1 = t2 = t_f / 4
 constexpr int oracle_steps = 200000;     // RK4 steps for laws without a closed form
 
-/// The rigid-block loading of 004 §3 for the scene's material: v_max = 2 % of √(E/ρ) (31.6 m/s).
+/// The rigid-block loading of [NBS18] §3 for the scene's material: v_max = 2 % of √(E/ρ) (31.6 m/s).
 struct Setup {
   double final_speed = 0.0;  ///< v_max [m/s]
   SlidingBlockLoading loading;
@@ -49,7 +49,7 @@ struct Variant {
   std::string friction;  ///< TOML value of contact.friction
 };
 
-/// The four laws of BENCHMARKS V2: k v_max = 0.5 and S_a = 0.3 N follow the loading.
+/// The four laws of V2 in docs/verification.md: k v_max = 0.5 and S_a = 0.3 N follow the loading.
 std::vector<Variant> variants(const SlidingBlockLoading& b, double final_speed) {
   return {{"coulomb", toml_number(coulomb_coefficient)},
           {"velocity-dependent", "{ law = \"velocity-dependent\", mu = 0.2, slope = " +
@@ -89,7 +89,7 @@ struct Reference {
 Reference oracle(const SlidingBlockLoading& b, const mpm::FrictionLaw& law) {
   if (const auto closed = rigid_block_friction(law))
     return {rigid_block_velocity(b, *closed, b.end_time), rigid_block_friction_work(b, *closed, b.end_time)};
-  // The smooth static/dynamic law (004 eq. 42) has no closed-form block motion: integrate it.
+  // The smooth static/dynamic law ([NBS18] eq. (42) has no closed-form block motion: integrate it.
   const RigidBlockState s = integrate_rigid_block(b, law, b.end_time, oracle_steps);
   return {s.velocity, s.friction_work};
 }
@@ -98,8 +98,8 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
                                  double cell_size, bool computed_normal) {
   const std::string scene = "scenes/verify/sliding-block.toml";
   // With normals from the mass gradients the block's corner nodes get tilted normals, and relative
-  // sliding reads as approach there; the position test of 004 eq. 8 is what keeps those nodes apart
-  // (004 §2.4), so that variant turns it on.
+  // sliding reads as approach there; the position test of [NBS18] eq. (8) is what keeps those nodes apart
+  // ([NBS18] §2.4), so that variant turns it on.
   const std::string text = with_overrides(embedded_scene("verify/sliding-block.toml"),
                                           {{"grid.cell_size", toml_number(cell_size)},
                                            {"contact.friction", variant.friction},
@@ -147,7 +147,7 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
   rows[1].reference = reference.friction_work;
   for (VerifyRow& row : rows) {
     row.error = std::abs(row.value - row.reference) / std::abs(row.reference);
-    if (!computed_normal) {  // issue 3: within 2 % for all four laws (the specified normal, as in 004)
+    if (!computed_normal) {  // within 2 % for all four laws (the specified normal, as in [NBS18])
       row.target_low = row.reference - 0.02 * std::abs(row.reference);
       row.target_high = row.reference + 0.02 * std::abs(row.reference);
     }

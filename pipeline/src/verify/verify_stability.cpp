@@ -1,4 +1,4 @@
-// `fragmpm verify --stability`: stiff and extreme scenes (DESIGN §7). Each runs to its stop
+// `fragmpm verify --stability`: stiff and extreme scenes (docs/design.md). Each runs to its stop
 // condition (always bounded by max_steps, so it cannot hang) and checks invariants: finite fields,
 // energy not created, momentum kept where nothing external acts, no particle lost.
 #include <algorithm>
@@ -216,9 +216,9 @@ ExtraChecks thermal_checks(double low, double high) {
 }
 
 /// Interface driven past θ_dam (scenes/stability/hot-interface.toml): temperatures finite, the
-/// hottest particle past θ_dam, friction work stopped before half the run (μ = 0 at θ ≥ θ_dam, 000
-/// eq. 15), and the heat content equal to friction work plus the face heat flux input Σ q a_p t
-/// (frictional heat = friction work, 000 eq. 14, 82; no conduction, no expansion).
+/// hottest particle past θ_dam, friction work stopped before half the run (μ = 0 at θ ≥ θ_dam, [XLS21]
+/// eq. (15)), and the heat content equal to friction work plus the face heat flux input Σ q a_p t
+/// (frictional heat = friction work, [XLS21] eq. (14), (82); no conduction, no expansion).
 void hot_interface_checks(const mpm::Solver<2>& solver, const Tracker& t, const std::vector<mpm::Vec<2>>&,
                           StabilityResult& r) {
   const auto& P = solver.particles();

@@ -1,5 +1,5 @@
 #pragma once
-// Figures of the fragment analysis (as 000 Fig. 17-18): CDFs of equivalent diameter and roundness
+// Figures of the fragment analysis (as [XLS21] Fig. 17-18): CDFs of equivalent diameter and roundness
 // with one curve per analysed frame, and fragment count and mean size against time.
 #include <span>
 #include <string>

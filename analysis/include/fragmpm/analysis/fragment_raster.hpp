@@ -1,5 +1,5 @@
 #pragma once
-// Raster view of fragments (DESIGN §6): particle domains (CPDI parallelograms x ± r1/2 ± r2/2) drawn
+// Raster view of fragments (docs/design.md): particle domains (CPDI parallelograms x ± r1/2 ± r2/2) drawn
 // into a mask with OpenCV, connected components of that mask, and the comparison with the graph
 // labelling of fragments.hpp. The picture joins fragments whose domains touch or overlap (pieces
 // pressed together), which the graph keeps apart; on well-separated fragments the two must agree.

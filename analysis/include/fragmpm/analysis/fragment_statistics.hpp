@@ -1,5 +1,5 @@
 #pragma once
-// Per-fragment statistics of DESIGN §6, in SI units (2D: areas m², masses kg/m per unit thickness).
+// Per-fragment statistics of docs/design.md, in SI units (2D: areas m², masses kg/m per unit thickness).
 //
 //   area                 A = Σ V0 det F over the fragment's particles (particle_domain.hpp)
 //   equivalent_diameter  √(4A/π)

@@ -1,6 +1,6 @@
 #pragma once
 // Fragment tables: CSV files for spreadsheets and scripts, and the datasets of the run file's
-// /fragments/NNNNNN/ group (DESIGN §5) as in-memory columns with `units` and `description`, which
+// /fragments/NNNNNN/ group (docs/design.md) as in-memory columns with `units` and `description`, which
 // mpm::FragmentGroupWriter stores.
 //
 // /fragments/NNNNNN/            attributes set by the caller (frame, time, step, options, …)

@@ -1,5 +1,5 @@
 #pragma once
-// Fragments of a 2D run frame by union-find over the particle graph (DESIGN §6).
+// Fragments of a 2D run frame by union-find over the particle graph (docs/design.md).
 //
 // A particle is masked when d ≥ d_mask (fully damaged material belongs to no fragment) or when its
 // position is not finite. Two particles p, q are joined when

@@ -1,5 +1,5 @@
 #pragma once
-// Everything the analysis reports for one frame (DESIGN §6): labels, the table of resolved fragments,
+// Everything the analysis reports for one frame (docs/design.md): labels, the table of resolved fragments,
 // the fines apart, the number- and mass-weighted CDFs of equivalent diameter and roundness over the
 // resolved fragments, and the raster cross-check.
 #include <cstddef>

@@ -1,6 +1,6 @@
 #pragma once
 // An off-screen OpenGL context (OSMesa, software rendering): figures are drawn without a display,
-// X server or GPU (DESIGN §6 "Figures"). The context owns an RGBA framebuffer of the given size,
+// X server or GPU (docs/design.md "Figures"). The context owns an RGBA framebuffer of the given size,
 // sets a pixel projection (x right, y down, origin at the top-left corner of the image, as in
 // OpenCV), and hands the result back as a cv::Mat.
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 // Current area and outline of a 2D particle (plane strain, per unit thickness), as the fragment
-// analysis sees them (DESIGN §6).
+// analysis sees them (docs/design.md).
 #include <array>
 #include <cstddef>
 
@@ -9,7 +9,7 @@
 namespace fragmpm::analysis {
 
 /// Current area of particle p [m²]: V0 det F. This is the area the mass occupies, unaffected by the
-/// shrinking of failed particles' CPDI domains (001 §2.6); when F was not stored (identity) it is V0.
+/// shrinking of failed particles' CPDI domains ([HH17] §2.6); when F was not stored (identity) it is V0.
 /// Falls back to the domain area |r1 × r2| when V0 det F is not positive (a frame without V0).
 double particle_area(const mpm::Particles<2>& particles, std::size_t p);
 

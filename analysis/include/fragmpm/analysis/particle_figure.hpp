@@ -1,5 +1,5 @@
 #pragma once
-// Particle figures (DESIGN §6 "Figures"): each CPDI particle domain — the parallelogram with corners
+// Particle figures (docs/design.md "Figures"): each CPDI particle domain — the parallelogram with corners
 // x ± r1/2 ± r2/2 — filled with the colour of a scalar field (viridis, with a colour bar labelled
 // with the field name and units) or of a body / fragment id (categorical palette, with a legend),
 // plus title, time stamp and a scale bar of a round length. Equal scale in x and y. Plain arrays in,

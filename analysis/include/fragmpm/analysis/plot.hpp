@@ -1,7 +1,7 @@
 #pragma once
 // Line plots rendered off-screen (OSMesa geometry, OpenCV text) and written as PNG: CDFs of fragment
 // size, energy balance over time, force–displacement of the platens, verification error versus run
-// time (DESIGN §6 "Figures"). Axes carry ticks at nice 1–2–5 values, tick labels, axis labels, a
+// time (docs/design.md "Figures"). Axes carry ticks at nice 1–2–5 values, tick labels, axis labels, a
 // title and a legend; either axis may be logarithmic.
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 // Shape measures of a planar region made of weighted cells: grains (pixels of a label image) and
-// fragments (particle domains) both go through the one implementation here (DESIGN §6), so the
+// fragments (particle domains) both go through the one implementation here (docs/design.md), so the
 // grain table and the fragment statistics use the same definitions, those of ImageJ:
 //   area A, equivalent diameter √(4A/π), centroid, the moment-equivalent ellipse (major, minor
 //   axis, orientation) rescaled to the region's area, roundness 4A/(π a²) = minor/major, aspect

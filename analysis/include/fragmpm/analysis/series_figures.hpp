@@ -1,5 +1,5 @@
 #pragma once
-// Plots of a run's /series (DESIGN §5), read into memory with mpm::RunFileReader::read_series: energy
+// Plots of a run's /series (docs/design.md), read into memory with mpm::RunFileReader::read_series: energy
 // balance over time and force–displacement of each wall. Values are shown with SI prefixes chosen
 // from their magnitude (µs, mJ/m, kN/m, mm).
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
 // Disjoint sets over the indices 0 … n−1 (union by size, path halving): near-constant time per
-// operation, used to join particles into fragments (DESIGN §6).
+// operation, used to join particles into fragments (docs/design.md).
 #include <cstddef>
 #include <numeric>
 #include <utility>

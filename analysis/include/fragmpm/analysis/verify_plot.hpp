@@ -1,5 +1,5 @@
 #pragma once
-// Verification figure (DESIGN §7): error against wall time, log–log, one line per (variant, metric),
+// Verification figure (docs/design.md): error against wall time, log–log, one line per (variant, metric),
 // from the CSV that `fragmpm verify` writes per case.
 #include <string>
 

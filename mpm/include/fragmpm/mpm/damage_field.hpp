@@ -1,8 +1,8 @@
 #pragma once
-// Kernel damage field and its gradient at the particles (001 eq. 17-19; 000 eq. 67), the Verlet
-// neighbour lists it runs on (001 §2.5), and the node-level rules of damage-field-gradient
-// partitioning: the nonlocal nodal gradient (001 Alg. 1; 000 eq. 69) and the field a particle maps
-// to at a node (001 Alg. 2; 000 eq. 68).
+// Kernel damage field and its gradient at the particles ([HH17] eq. (17)-(19); [XLS21] eq. (67), the Verlet
+// neighbour lists it runs on ([HH17] §2.5), and the node-level rules of damage-field-gradient
+// partitioning: the nonlocal nodal gradient ([HH17] Alg. 1; [XLS21] eq. (69) and the field a particle maps
+// to at a node ([HH17] Alg. 2; [XLS21] eq. (68).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -14,7 +14,7 @@
 
 namespace fragmpm::mpm {
 
-/// Verlet neighbour lists of particles over a uniform bin grid (001 §2.5).
+/// Verlet neighbour lists of particles over a uniform bin grid ([HH17] §2.5).
 ///
 /// A build lists, for every particle p, the particles q ≠ p with |x_p − x_q| ≤ r_list at build
 /// time, where r_list = r_p (1 + f), r_p = `radius` and the skin f·r_p with f = `rebuild_fraction`.
@@ -128,18 +128,18 @@ void NeighbourLists<D>::for_each_adjacent_row(std::uint32_t bin, Visit&& visit) 
   }
 }
 
-/// Kernel of 001 eq. (18): ω(r̄) = 1 − 3r̄² + 2r̄³ for 0 ≤ r̄ ≤ 1, else 0.
+/// Kernel of [HH17] eq. (18): ω(r̄) = 1 − 3r̄² + 2r̄³ for 0 ≤ r̄ ≤ 1, else 0.
 inline double damage_kernel(double rbar) {
   return rbar >= 1.0 ? 0.0 : 1.0 - rbar * rbar * (3.0 - 2.0 * rbar);
 }
 
-/// Normalised kernel damage field at the particles and its gradient (001 eq. 17-19; 000 eq. 67):
+/// Normalised kernel damage field at the particles and its gradient ([HH17] eq. (17)-(19); [XLS21] eq. (67):
 ///   D̄(x_p) = Σ_q d̂_q ω(r̄_pq) / Σ_q ω(r̄_pq),  r̄_pq = |x_p − x_q| / r_p,
 /// summed over q = p and the listed neighbours closer than r_p, and by the quotient rule
 ///   ∇D̄(x_p) = Σ_q (d̂_q − D̄_p) ∇ω_pq / Σ_q ω_pq,  ∇ω_pq = −6 (1 − r̄) (x_p − x_q) / r_p²
 /// (ω'(r̄) = −6 r̄ (1 − r̄), and ∇r̄ = (x_p − x_q)/(r_p |x_p − x_q|)). Σ ω ≥ ω(0) = 1, so the field is
 /// defined at every particle; normalisation makes D̄ = c exactly (to round-off) for constant d̂ = c,
-/// also at free edges (001 Fig. 4c).
+/// also at free edges ([HH17] Fig. 4c).
 ///
 /// lists: updated for these x and this radius (every pair closer than r_p listed). x: N positions
 /// [m]; dhat: N values d̂ = max(s, d) in [0, 1]; radius: r_p [m], normally the cell diagonal.
@@ -157,7 +157,7 @@ void damage_field_gradient(const NeighbourLists<D>& lists, const std::vector<Vec
 
 // ---- Node-level rules of DFG partitioning ----
 
-/// Order of 001 Alg. 1 line 5: true when particle gradient a replaces nodal gradient b, i.e. |a| >
+/// Order of [HH17] Alg. 1 line 5: true when particle gradient a replaces nodal gradient b, i.e. |a| >
 /// |b|. Equal norms are broken lexicographically by the components (larger first), which makes the
 /// nodal maximum a total order: the result of folding any set of particle gradients into a node
 /// does not depend on the order (serial, coloured or per-thread-then-reduced P2G give the same
@@ -171,8 +171,8 @@ inline bool replaces_nodal_gradient(const Vec<D>& a, const Vec<D>& b) {
   return false;
 }
 
-/// 001 Alg. 1 lines 5-7 for one particle–node pair: the nodal gradient (initially zero) becomes the
-/// particle gradient of largest norm among the particles that map to the node (000 eq. 69 evaluated
+/// [HH17] Alg. 1 lines 5-7 for one particle–node pair: the nodal gradient (initially zero) becomes the
+/// particle gradient of largest norm among the particles that map to the node ([XLS21] eq. (69) evaluated
 /// at particle centres). Call for every entry of every particle's stencil.
 template <int D>
 inline void fold_nodal_gradient(const Vec<D>& particle_gradient, Vec<D>& nodal_gradient) {
@@ -180,7 +180,7 @@ inline void fold_nodal_gradient(const Vec<D>& particle_gradient, Vec<D>& nodal_g
     nodal_gradient = particle_gradient;
 }
 
-/// Structure-tensor alternative to Alg. 1, closer to 001 §2.2's definition of the nonlocal nodal
+/// Structure-tensor alternative to Alg. 1, closer to [HH17] §2.2's definition of the nonlocal nodal
 /// gradient (the direction n* maximising ∫ |n*·∇D̄| over the node's neighbourhood): accumulate
 /// T_i = Σ_p ∇D̄_p ⊗ ∇D̄_p over the particles mapping to node i (unweighted), and take its principal
 /// eigenvector, which maximises Σ_p (n·∇D̄_p)². Gradients on the two sides of a crack are opposite
@@ -201,7 +201,7 @@ inline void accumulate_gradient_tensor(const Vec<D>& particle_gradient, Mat<D>& 
 template <int D>
 Vec<D> principal_gradient(const Mat<D>& tensor);
 
-/// 001 Alg. 2 line 3: field (0 or 1) that particle p uses at node i: 0 when ∇D̄_p · ∇D̄_i ≥ 0, else
+/// [HH17] Alg. 2 line 3: field (0 or 1) that particle p uses at node i: 0 when ∇D̄_p · ∇D̄_i ≥ 0, else
 /// 1. A zero gradient at either end gives field 0.
 template <int D>
 inline std::uint8_t particle_field_at_node(const Vec<D>& particle_gradient,
@@ -211,7 +211,7 @@ inline std::uint8_t particle_field_at_node(const Vec<D>& particle_gradient,
 
 /// |cos| between ∇D̄_p and ∇D̄_i below which a surface-flagged particle's gradient carries no
 /// side information at a node (the solver's junction rule, field_of). Where a free face ends at a
-/// contact surface (the billet corner under the overhanging platen, BENCHMARKS P2) the junction
+/// contact surface (the billet corner under the overhanging platen, P2 in docs/verification.md) the junction
 /// particle's DFG points along the free face's normal, within a few degrees of the contact plane
 /// (cos = −0.04 … 0.08 there), and the sign of ∇D̄_p · ∇D̄_i flips with round-off-sized changes of
 /// the nodal direction. arcsin(0.2) ≈ 12°; the P2 error is the same for thresholds 0.1 to 0.3.
@@ -240,7 +240,7 @@ inline std::uint8_t particle_field_at_node(const Vec<D>& particle_gradient,
   return offset.dot(nodal_gradient) <= 0.0 ? 0 : 1;
 }
 
-/// 001 Alg. 1 over all particles. Stencils as CSR: the nodes particle p maps to are
+/// [HH17] Alg. 1 over all particles. Stencils as CSR: the nodes particle p maps to are
 /// nodes[node_start[p] .. node_start[p + 1]) (linear node indices in [0, nodal_gradient.size()),
 /// repeats allowed, e.g. CPDI corners sharing a node). particle_gradient: N ∇D̄_p [1/m].
 /// nodal_gradient: pre-sized to the node count; overwritten with ∇D̄_i (zero at nodes no particle
@@ -260,7 +260,7 @@ void nodal_damage_gradient_principal(const std::vector<Vec<D>>& particle_gradien
                                      const std::vector<std::int64_t>& nodes,
                                      std::vector<Vec<D>>& nodal_gradient);
 
-/// 001 Alg. 2 over all particles: field[e] ∈ {0, 1} of stencil entry e (particle p, node
+/// [HH17] Alg. 2 over all particles: field[e] ∈ {0, 1} of stencil entry e (particle p, node
 /// nodes[e]), same CSR layout as nodal_damage_gradient; field is resized to nodes.size().
 /// OpenMP over particles.
 template <int D>

@@ -1,5 +1,5 @@
 #pragma once
-// Maps global node coordinates to the linear index of the active region (DESIGN §4: the grid
+// Maps global node coordinates to the linear index of the active region (docs/design.md: the grid
 // exists only over the bounding box of the particles plus padding, refreshed every step).
 #include <cmath>
 #include <cstdint>

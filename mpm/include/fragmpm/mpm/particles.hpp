@@ -1,5 +1,5 @@
 #pragma once
-// Material points as a structure of arrays (DESIGN §4). Units SI; in 2D (plane strain) volumes are
+// Material points as a structure of arrays (docs/design.md). Units SI; in 2D (plane strain) volumes are
 // areas per unit thickness [m^2] and masses are per unit thickness [kg/m].
 #include <cstddef>
 #include <cstdint>
@@ -20,7 +20,7 @@ struct Particles {
   std::vector<Mat<D>> stress;      ///< Cauchy stress [Pa], in-plane components
   std::vector<double> damage;      ///< d in [0, 1]
   std::vector<double> damage_history;  ///< R: largest equivalent stress seen [Pa]
-  std::vector<std::uint8_t> surface;   ///< s in {0, 1}: on a body boundary (001 §2.4)
+  std::vector<std::uint8_t> surface;   ///< s in {0, 1}: on a body boundary ([HH17] §2.4)
   std::vector<std::int32_t> body;      ///< body id
   std::vector<std::int32_t> material;  ///< index into the problem's material list
   std::vector<double> strength;        ///< σ_f per particle [Pa]

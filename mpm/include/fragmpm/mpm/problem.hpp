@@ -18,7 +18,7 @@ namespace fragmpm::mpm {
 
 enum class ShapeFunctionKind { linear, ugimp, cpdi };
 
-/// Compressible neo-Hookean (000 eq. 16-17), given by bulk and shear modulus.
+/// Compressible neo-Hookean ([XLS21] eq. (16)-(17), given by bulk and shear modulus.
 struct MaterialSpec {
   std::string name;
   double bulk_modulus = 0.0;   ///< K [Pa]
@@ -27,10 +27,10 @@ struct MaterialSpec {
   DamageLaw damage = NoDamage{};
   Degradation degradation = Degradation::tensile_spectral;
   double strength = 0.0;       ///< uniform σ_f [Pa] (Particles::strength holds the per-particle value)
-  bool weibull = false;        ///< strengths drawn from `weibull_strength` (001 eq. 25)
+  bool weibull = false;        ///< strengths drawn from `weibull_strength` ([HH17] eq. (25)
   WeibullStrength weibull_strength;
   /// l_ch of the damage law [m]; 0 = the particle size V₀^(1/D) (the width of a one-particle crack
-  /// band). The papers list l_ch as an input (001 Tables II-III: 1.414 mm at h = 1 mm).
+  /// band). The papers list l_ch as an input ([HH17] Tables II-III: 1.414 mm at h = 1 mm).
   double characteristic_length = 0.0;
 
   bool damages() const { return !std::holds_alternative<NoDamage>(damage); }
@@ -75,19 +75,19 @@ struct TractionLoad {
   }
 };
 
-/// Damage-field-gradient partitioning and contact between the two fields of a node (DESIGN §4;
-/// 001 §2.2-2.4, Alg. 1-3; 000 eq. 67-77).
+/// Damage-field-gradient partitioning and contact between the two fields of a node (docs/design.md;
+/// [HH17] §2.2-2.4, Alg. 1-3; [XLS21] eq. (67)-(77).
 enum class Partitioning {
   automatic,  ///< on when the scene has more than one body or a damaging material
   off,        ///< one velocity field everywhere (the "single-field" comparison runs)
-  bodies,     ///< field = (body ≠ 0), always separable: a-priori multimaterial contact (004 §2.2),
-              ///< the two-body reference of the self-contact check (001 §3.1)
+  bodies,     ///< field = (body ≠ 0), always separable: a-priori multimaterial contact ([NBS18] §2.2),
+              ///< the two-body reference of the self-contact check ([HH17] §3.1)
 };
 
 /// How the nonlocal nodal damage-field gradient is formed from the particle gradients.
 enum class NodalGradientRule {
-  principal,  ///< principal direction of Σ_p ∇D̄_p ⊗ ∇D̄_p (001 §2.2's maximisation; default)
-  largest,    ///< the particle gradient of largest norm (001 Alg. 1)
+  principal,  ///< principal direction of Σ_p ∇D̄_p ⊗ ∇D̄_p ([HH17] §2.2's maximisation; default)
+  largest,    ///< the particle gradient of largest norm ([HH17] Alg. 1)
 };
 
 template <int D>
@@ -95,22 +95,22 @@ struct ContactSpec {
   Partitioning partitioning = Partitioning::automatic;
   FrictionLaw friction = CoulombFriction{};  ///< between the two fields of a separable node
   /// Separable when the largest d̂ = max(s, d) of a particle mapping to the node reaches
-  /// `critical_damage` (001 §2.3: "at least one particle fully damaged") and the mass-weighted
-  /// mean d̂ of each field exceeds `minimum_damage` (001 eq. 21, Alg. 3; 000 eq. 70-71).
+  /// `critical_damage` ([HH17] §2.3: "at least one particle fully damaged") and the mass-weighted
+  /// mean d̂ of each field exceeds `minimum_damage` ([HH17] eq. (21), Alg. 3; [XLS21] eq. (70)-(71).
   double critical_damage = 1.0;  ///< D_cr
-  double minimum_damage = 0.25;  ///< D_min (001 Table III)
+  double minimum_damage = 0.25;  ///< D_min ([HH17] Table III)
   /// Neighbour lists of the damage field are rebuilt once a particle has moved this fraction of
-  /// the kernel radius since the last build (001 §2.5).
+  /// the kernel radius since the last build ([HH17] §2.5).
   double rebuild_fraction = 0.25;
   /// Alg. 1's largest particle gradient follows the staircase of particle rows (up to 18° off a
   /// straight crack's normal in the tests, 7° for the principal direction), so principal is the
   /// default; largest is kept to reproduce the paper's algorithm.
   NodalGradientRule nodal_gradient = NodalGradientRule::principal;
-  bool position_gap_test = false;  ///< also require overlapping extrapolated positions (004 eq. 8)
-  /// Frictional heat per step at two-field nodes and contact walls: second order (004 eq. 31-36)
-  /// converges in Δt where first order (eq. 27) needs a ten times smaller step (004 Fig. 7).
+  bool position_gap_test = false;  ///< also require overlapping extrapolated positions ([NBS18] eq. (8)
+  /// Frictional heat per step at two-field nodes and contact walls: second order ([NBS18] eq. (31)-(36)
+  /// converges in Δt where first order (eq. (27)) needs a ten times smaller step ([NBS18] Fig. 7).
   FrictionWorkOrder friction_work_order = FrictionWorkOrder::second;
-  Vec<D> normal = Vec<D>::Zero();  ///< prescribed contact normal of field 0; zero = from mass gradients (000 eq. 74)
+  Vec<D> normal = Vec<D>::Zero();  ///< prescribed contact normal of field 0; zero = from mass gradients ([XLS21] eq. (74)
 };
 
 template <int D>
@@ -124,9 +124,9 @@ struct GridSpec {
 struct TimeSpec {
   double cfl = 0.4;           ///< C_cfl in Δt = C h / max(c + |v|)
   double fixed_dt = 0.0;      ///< [s]; 0 = adaptive
-  double pic_fraction = 0.0;  ///< ζ of 000 eq. (64): 0 = pure FLIP, 1 = pure PIC
+  double pic_fraction = 0.0;  ///< ζ of [XLS21] eq. (64): 0 = pure FLIP, 1 = pure PIC
   /// ζ_θ for the particle temperatures: θ_p ← (1 − ζ_θ)(θ_p + Δt Σ S̄ θ̇_i) + ζ_θ Σ S̄ (θ_i + Δt θ̇_i).
-  /// 0 is 000 eq. 62, whose increment lets a particle hotter than the nodal interpolant warm further
+  /// 0 is [XLS21] eq. (62), whose increment lets a particle hotter than the nodal interpolant warm further
   /// (7.8 K past the hottest initial temperature at a conductivity contrast of 10⁴); the PIC part
   /// is a convex combination of nodal temperatures and conserves the heat content exactly.
   double thermal_pic_fraction = 0.0;

@@ -1,5 +1,5 @@
 #pragma once
-// One HDF5 file per run (DESIGN §5), SI units, plus an XDMF file beside it for ParaView/VisIt.
+// One HDF5 file per run (docs/design.md), SI units, plus an XDMF file beside it for ParaView/VisIt.
 //   /meta                 attributes: program_version, git_hash, scene_text, scene_path, unit_system,
 //                         dimension, modules (one "name: on|off — reason" line each), failure (if any)
 //   /frames/NNNNNN/       attributes time, step; datasets x, v, F, volume0, mass, r1, r2, stress,
@@ -38,7 +38,7 @@ struct Checkpoint {
   Particles<D> particles;
 };
 
-/// Names of frame datasets, in the order of DESIGN §5.
+/// Names of frame datasets, in the order of docs/design.md
 const std::vector<std::string>& all_frame_fields();
 
 template <int D>
@@ -85,7 +85,7 @@ class RunFile {
 /// Reads one dataset of /series as a flat vector (row-major for steps×D datasets).
 std::vector<double> read_series(const std::string& path, const std::string& name);
 
-/// Writes the frame datasets of `particles` (DESIGN §5 layout and units attributes; `fields` empty =
+/// Writes the frame datasets of `particles` (docs/design.md layout and units attributes; `fields` empty =
 /// all, x always) into `group`. Used for run frames and for the /particles group of grain files.
 /// Returns the names of the datasets written.
 template <int D>

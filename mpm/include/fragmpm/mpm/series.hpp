@@ -1,5 +1,5 @@
 #pragma once
-// Per-step bookkeeping: energies, momentum, wall reactions (DESIGN §4 "Energy and momentum").
+// Per-step bookkeeping: energies, momentum, wall reactions (docs/design.md "Energy and momentum").
 #include <string>
 #include <vector>
 

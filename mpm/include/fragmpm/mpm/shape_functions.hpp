@@ -132,7 +132,7 @@ inline void ugimp_stencil(const Vec<D>& x, const Vec<D>& half_length, const Grid
   }
 }
 
-/// CPDI (000 eq. 52-53; 001 §1.1). The domain is the parallelepiped spanned by the full edge vectors
+/// CPDI ([XLS21] eq. (52)-(53); [HH17] §1.1). The domain is the parallelepiped spanned by the full edge vectors
 /// r_k (columns of `domain`), corners x ± r1/2 ± r2/2. Interpolating the hat N_i bilinearly between
 /// the corner values gives S̄_ip = mean_c N_i(x_c) and, by the divergence theorem with the map
 /// x = x_p + Σ ξ_k r_k/2, ∇S̄_ip = Σ_c N_i(x_c) |det J| J^{-T} s_c / V with J = domain/2 and

@@ -1,5 +1,5 @@
 #pragma once
-// The explicit DP-MPM step (DESIGN §4), update-stress-last with a FLIP/PIC blend (000 eq. 64-66).
+// The explicit DP-MPM step (docs/design.md), update-stress-last with a FLIP/PIC blend ([XLS21] eq. (64)-(66).
 #include <limits>
 #include <memory>
 #include <optional>
@@ -31,7 +31,7 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem);
 
 /// Largest stable explicit Δt for the current particle state: C_cfl h / (√D max_p(c_p + |v_p|))
 /// with c_p = sqrt((K + 4G/3) / ρ_p), ρ_p = ρ0 / J. The √D is the multi-dimensional CFL factor of
-/// multilinear hats with a lumped mass (DESIGN §4 gives the 1D form).  [s]
+/// multilinear hats with a lumped mass (docs/design.md gives the 1D form).  [s]
 template <int D>
 double stable_time_step(const Problem<D>& problem, const Particles<D>& particles, double cfl);
 

@@ -1,7 +1,7 @@
 #pragma once
-// Scene data of the thermal module (DESIGN §4 "Thermal module"; 000 §2.1-2.3, §3.1): per-material
+// Scene data of the thermal module (docs/design.md "Thermal module"; [XLS21] §2.1-2.3, §3.1): per-material
 // thermal constants and thermal boundary conditions. Empty `materials` = the module is off: no
-// thermal arrays and no thermal loop (DESIGN §4 "Leave out what a scene does not need").
+// thermal arrays and no thermal loop (docs/design.md "Leave out what a scene does not need").
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -15,13 +15,13 @@ namespace fragmpm::mpm {
 
 /// Thermal constants of one material (index = material index of the problem).
 struct ThermalMaterial {
-  double conductivity = 0.0;           ///< κ [W/(m K)] of q = −κ ∇θ (000 eq. 18)
-  double specific_heat = 0.0;          ///< c [J/(kg K)] (000 eq. 4, 38)
-  double expansion = 0.0;              ///< α_t [1/K] (000 eq. 3)
-  double reference_temperature = 0.0;  ///< θ₀ [K] of the coupling energy M (000 eq. 3); zero thermal stress at θ₀
+  double conductivity = 0.0;           ///< κ [W/(m K)] of q = −κ ∇θ ([XLS21] eq. (18)
+  double specific_heat = 0.0;          ///< c [J/(kg K)] ([XLS21] eq. (4), (38)
+  double expansion = 0.0;              ///< α_t [1/K] ([XLS21] eq. (3)
+  double reference_temperature = 0.0;  ///< θ₀ [K] of the coupling energy M ([XLS21] eq. (3); zero thermal stress at θ₀
 };
 
-/// A thermal condition on the material next to a plane (000 eq. 44, 57): a rigid wall's plane, or a
+/// A thermal condition on the material next to a plane ([XLS21] eq. (44), (57): a rigid wall's plane, or a
 /// plane that only carries the condition (scene kind = "thermal", no mechanical action).
 enum class ThermalWallKind {
   insulated,    ///< q·n = 0 (the natural condition; the default)
@@ -44,7 +44,7 @@ struct ThermalWallCondition {
 };
 
 /// A heat flux into the material through part of a body's boundary, carried by particles like a
-/// traction load: Q_p = q̄ a_p with a_p the boundary length (2D) the particle carries (000 eq. 57).
+/// traction load: Q_p = q̄ a_p with a_p the boundary length (2D) the particle carries ([XLS21] eq. (57).
 struct HeatFluxLoad {
   std::string name;
   std::vector<std::int64_t> particles;
@@ -60,8 +60,8 @@ struct ThermalSpec {
   std::vector<ThermalMaterial> materials;  ///< one per problem material; empty = module off
   std::vector<ThermalWallCondition<D>> walls;
   std::vector<HeatFluxLoad> edge_loads;
-  /// Contact conductance h_c = h₀ |p/p₀|^ε at separable nodes in contact (000 eq. 12; ε = 1 is
-  /// eq. 13 with γ̄ = h₀/p₀). h₀ = 0: contacts pass no heat by conduction (friction heat still flows).
+  /// Contact conductance h_c = h₀ |p/p₀|^ε at separable nodes in contact ([XLS21] eq. (12); ε = 1 is
+  /// eq. (13) with γ̄ = h₀/p₀). h₀ = 0: contacts pass no heat by conduction (friction heat still flows).
   double contact_conductance = 0.0;  ///< h₀ [W/(m² K)]
   double contact_pressure = 1.0;     ///< p₀ [Pa]
   double contact_exponent = 1.0;     ///< ε

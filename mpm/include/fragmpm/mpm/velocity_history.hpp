@@ -13,7 +13,7 @@ enum class HistoryKind { constant, ramp, sinusoid };
 /// constant: v(t) = from.
 /// ramp: v = from for t <= t_start, linear to `to` over [t_start, t_end], then `to`.
 /// sinusoid: v = from for t <= t_start, then from + amplitude * sin(2π frequency (t − t_start) + phase)
-/// (004 eq. 44 with t₁ = t_start).
+/// ([NBS18] eq. (44) with t₁ = t_start).
 template <int D>
 struct VelocityHistory {
   HistoryKind kind = HistoryKind::constant;

@@ -1,6 +1,6 @@
 #pragma once
 // The part of a rigid wall's plane that acts: everywhere, or only inside a box that moves with the
-// wall (a finite platen, or the rigid blocks that drive the oscillating block of 004 Fig. 6).
+// wall (a finite platen, or the rigid blocks that drive the oscillating block of [NBS18] Fig. 6).
 #include "fragmpm/mpm/types.hpp"
 
 namespace fragmpm::mpm {

@@ -1,6 +1,6 @@
 #pragma once
 // `fragmpm analyze` as a function, so that `fragmpm pipeline` and `fragmpm demo` run the same
-// analysis (DESIGN §6, §8): fragments of chosen frames of a run file, their tables (CSV and
+// analysis (docs/design.md): fragments of chosen frames of a run file, their tables (CSV and
 // /fragments/NNNNNN/ in the run file), number- and mass-weighted CDFs of equivalent diameter and
 // roundness, fragment count and mean size against time over every frame, and the figures.
 #include <cstdio>

@@ -1,5 +1,5 @@
 #pragma once
-// `fragmpm pipeline` as a function, shared with `fragmpm demo` (DESIGN §8, issue 6 item 5):
+// `fragmpm pipeline` as a function, shared with `fragmpm demo` (docs/design.md):
 // micrograph → segmentation preview → scene with the image's grains → run file + XDMF → fragment
 // tables and CDF figures (analyze_run) → field figures of the last frame, energy and
 // force–displacement plots → summary.txt, all in one output directory.

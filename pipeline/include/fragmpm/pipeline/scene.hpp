@@ -1,5 +1,5 @@
 #pragma once
-// Scene files (DESIGN §3): TOML with quantities written with units, compiled into an mpm::Problem in
+// Scene files (docs/design.md): TOML with quantities written with units, compiled into an mpm::Problem in
 // SI units with particles sampled from the bodies' shapes. The format is described in
 // scenes/README.md. Every malformed scene raises SceneError naming file, line, key and what was
 // expected; the CLI maps it to exit code 2.

@@ -1,6 +1,6 @@
 #pragma once
 // Simple 2D shapes (disk, box, polygon) and their sampling into material points on the regular
-// sub-cell lattice of a grid (DESIGN §3-4). Used by the scene compiler; exposed for tests and for
+// sub-cell lattice of a grid (docs/design.md). Used by the scene compiler; exposed for tests and for
 // other body sources that want the same particle conventions.
 #include <cstddef>
 #include <utility>

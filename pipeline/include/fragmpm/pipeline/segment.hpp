@@ -1,5 +1,5 @@
 #pragma once
-// Micrograph → grains (issue 5): the whole segmentation of one image, from file or from memory.
+// Micrograph → grains: the whole segmentation of one image, from file or from memory.
 //   grey input:    working image → threshold → clean-up → watershed split → hole filling
 //   class mask:    grain patches separated by the boundary class, boundary given to the grains
 //   label image:   4-connected patches of one value

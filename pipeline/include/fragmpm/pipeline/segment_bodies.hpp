@@ -1,5 +1,5 @@
 #pragma once
-// Grains as scene bodies (issue 5 item 4, for the scene compiler): particles at the scene's cell
+// Grains as scene bodies (for the scene compiler): particles at the scene's cell
 // size from a micrograph (`[bodies] image = "…"`) or from a grain file (`grains = "grains.h5"`).
 // Particles are in the image's physical frame (origin at the lower-left corner of the window,
 // y up, SI); the scene translates them. body = grain row (label − 1), material = grain phase

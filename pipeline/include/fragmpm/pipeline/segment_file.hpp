@@ -1,5 +1,5 @@
 #pragma once
-// Grain files (DESIGN §5): one HDF5 file per segmented image, SI units.
+// Grain files (docs/design.md): one HDF5 file per segmented image, SI units.
 //   /            attributes: format ("fragmpm grain file"), program_version, git_hash,
 //                pixel_size [m], image_path, window (x,y,w,h in the image's pixels), image_size
 //                (w,h), input_kind, options (the segmentation settings, one "key = value" a line)

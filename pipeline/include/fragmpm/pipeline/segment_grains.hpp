@@ -1,5 +1,5 @@
 #pragma once
-// The grain table (DESIGN §5 /grains, issue 5 item 2): grains filtered by size and border, numbered
+// The grain table (docs/design.md /grains): grains filtered by size and border, numbered
 // 1..N, with the shape measures of analysis/region_shape (ImageJ definitions, shared with the
 // fragment statistics) and a phase from grey-level bands.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Image loading and preprocessing for the segmentation (issue 5 item 1): read PNG, TIFF (8- and
+// Image loading and preprocessing for the segmentation: read PNG, TIFF (8- and
 // 16-bit), BMP or JPEG, crop a window, convert colour to grey, and build the 8-bit working image
 // (invert, stretch, denoise, equalise) that the thresholds run on.
 #include <optional>

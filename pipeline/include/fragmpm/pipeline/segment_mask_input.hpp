@@ -1,5 +1,5 @@
 #pragma once
-// Already-segmented input (issue 5 item 1): class masks with a boundary class (as the Miocene
+// Already-segmented input: class masks with a boundary class (as the Miocene
 // sandstone and Torrey Pines masks: 0 background, 1 grain, 2 boundary line) and label images.
 #include <string>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Options of `fragmpm segment` (DESIGN §8) and the error raised for bad segmentation input.
+// Options of `fragmpm segment` (docs/design.md) and the error raised for bad segmentation input.
 // Lengths in pixels unless the name says otherwise; the pixel size converts to SI.
 #include <cstdint>
 #include <optional>

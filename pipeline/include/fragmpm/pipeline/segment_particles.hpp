@@ -1,8 +1,8 @@
 #pragma once
-// Grains → material points (issue 5 item 3): particles on a regular lattice sample the label image;
+// Grains → material points: particles on a regular lattice sample the label image;
 // each takes the grain of the pixel it falls in, and particles next to another grain or to the
 // background carry the surface flag that makes touching grains separable from the first step
-// (001 §2.4).
+// ([HH17] §2.4).
 #include <cstdint>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The segmentation preview (issue 5 item 6): the micrograph with every grain's outline in its own
+// The segmentation preview: the micrograph with every grain's outline in its own
 // colour and its label number at its centroid; grains that were dropped (too small, cut by the
 // border) are tinted red; a strip below states the grain count, median size and pixel size.
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Synthetic micrographs with known answers (issue 5 items 5 and 7): bright grains of analytic shape
+// Synthetic micrographs with known answers: bright grains of analytic shape
 // on a dark background, with their ground-truth labels and analytic areas. Used by the tests and by
 // the `fragmpm_make_images` tool that writes images/synthetic/.
 #include <cstdint>

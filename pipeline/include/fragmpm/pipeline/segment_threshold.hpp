@@ -1,5 +1,5 @@
 #pragma once
-// Thresholding the working image into a grain mask and cleaning the mask up (issue 5 item 1).
+// Thresholding the working image into a grain mask and cleaning the mask up.
 #include <string>
 
 #include <opencv2/core/mat.hpp>

@@ -1,5 +1,5 @@
 #pragma once
-// Label images from masks and splitting of touching grains (issue 5 item 1): marker-controlled
+// Label images from masks and splitting of touching grains: marker-controlled
 // watershed on the Euclidean distance transform, with markers merged back across wide necks.
 //
 // OpenCV's cv::watershed ranks pixels by the colour difference to their neighbour rather than by

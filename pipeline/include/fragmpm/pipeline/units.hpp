@@ -1,6 +1,6 @@
 #pragma once
 // Physical quantities written with their unit ("50 GPa", "2.3 g/cm3", "800 C"), converted once at
-// input to SI (DESIGN §3). A bare number is already SI.
+// input to SI (docs/design.md). A bare number is already SI.
 //
 // Unit expressions: symbols with an optional SI prefix (p n u µ μ m c d k M G T) and an optional
 // integer exponent ("cm3", "m^3", "s^-1", "m²"), multiplied by a space, '*' or '·' and divided by

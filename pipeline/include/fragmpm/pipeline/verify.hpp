@@ -2,7 +2,7 @@
 #include <cmath>
 #include <limits>
 // `fragmpm verify`: verification cases at successive resolutions against closed-form or published
-// answers (DESIGN §7), and the stability scenes (`--stability`).
+// answers (docs/design.md), and the stability scenes (`--stability`).
 #include <functional>
 #include <string>
 #include <vector>
@@ -25,7 +25,7 @@ struct VerifyRow {
   double value = 0.0;
   double reference = 0.0;
   double error = 0.0;
-  /// Acceptance band of `value` from BENCHMARKS.md / the issue ("done when"); a row without a
+  /// Acceptance band of `value` from docs/verification.md ("done when"); a row without a
   /// target has the whole line. report_case says PASS or FAIL for rows with a target.
   double target_low = -std::numeric_limits<double>::infinity();
   double target_high = std::numeric_limits<double>::infinity();
@@ -47,10 +47,10 @@ struct VerifyCase {
 /// Every verification case, in the order `fragmpm verify` runs them without arguments.
 const std::vector<VerifyCase>& verify_cases();
 
-/// V1: axial vibration of an elastic bar (BENCHMARKS.md), CPDI and linear shape functions.
+/// V1: axial vibration of an elastic bar (docs/verification.md), CPDI and linear shape functions.
 std::vector<VerifyRow> verify_bar(const VerifyOptions& options);
 
-/// V2: sliding block with four friction laws against the rigid-block oracle (BENCHMARKS.md; 004 §3):
+/// V2: sliding block with four friction laws against the rigid-block oracle (docs/verification.md; [NBS18] §3):
 /// end-of-slide velocity and friction work per variant (law) and cell size.
 std::vector<VerifyRow> verify_sliding_block(const VerifyOptions& options);
 
@@ -59,26 +59,26 @@ std::vector<VerifyRow> verify_sliding_block(const VerifyOptions& options);
 /// the specified (0, 1)); returns the velocity and friction-work rows.
 std::vector<VerifyRow> verify_sliding_block_level(const std::string& variant, int level, double cell_size);
 
-/// P2: self-contact against two-body contact and a single field (001 §3.1).
+/// P2: self-contact against two-body contact and a single field ([HH17] §3.1).
 std::vector<VerifyRow> verify_billet(const VerifyOptions& options);
 
-/// V6: dissipated energy of a notched bar against G_f × formed crack (001 §3.3).
+/// V6: dissipated energy of a notched bar against G_f × formed crack ([HH17] §3.3).
 std::vector<VerifyRow> verify_notched_bar(const VerifyOptions& options);
 
-/// P1: Kalthoff–Winkler crack angle and speed (000 §4.3; 001 §3.2).
+/// P1: Kalthoff–Winkler crack angle and speed ([XLS21] §4.3; [HH17] §3.2).
 std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options);
 
 /// V4: one-dimensional conduction from a temperature step against the erfc solution.
 std::vector<VerifyRow> verify_conduction(const VerifyOptions& options);
 
 /// V3: steady contact-face temperatures across a pressed interface with pressure-dependent
-/// conductance, κ̄ = 0.1, 1, 10 (000 §4.2, eq. 90); metrics in K (absolute errors).
+/// conductance, κ̄ = 0.1, 1, 10 ([XLS21] §4.2, eq. (90)); metrics in K (absolute errors).
 std::vector<VerifyRow> verify_contact_temperature(const VerifyOptions& options);
 
 /// V7: oscillating-block frictional heating over CFL factors, first- and second-order heating
-/// (004 §3, Fig. 6-7): friction work of one stick–slide–stick interval against its C → 0 limit.
+/// ([NBS18] §3, Fig. 6-7): friction work of one stick–slide–stick interval against its C → 0 limit.
 std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options);
-/// P3: disk squish (000 §4.4; 001 Fig. 9) isothermal, coupled and with thermal-softening friction:
+/// P3: disk squish ([XLS21] §4.4; [HH17] Fig. 9) isothermal, coupled and with thermal-softening friction:
 /// peak contact temperature [K], disk speed [m/s] and friction work per variant.
 std::vector<VerifyRow> verify_disk_squish(const VerifyOptions& options);
 
