@@ -9,7 +9,7 @@
 namespace fragmpm::mpm {
 namespace {
 
-/// The quantities every friction law may read, in impulse form ([NBS18] eq. (15).
+/// The quantities every friction law may read, in impulse form ([NBS18] eq. (15)).
 struct StickImpulses {
   double normal = 0.0;        ///< N A_c Δt = −d_n > 0 [N s]
   double tangential = 0.0;    ///< d_t = S_stick A_c Δt ≥ 0 [N s]
@@ -90,7 +90,7 @@ ContactExchange<D> exchange_momentum(const ContactNode<D>& node, const FrictionL
   const double m_red =
       rigid_b ? node.mass_a : node.mass_a * node.mass_b / (node.mass_a + node.mass_b);
 
-  // Stick momentum change Δp_a = m_a v_cm − p_a = m_red (v_b − v_a) ([NBS18] eq. (12), (14).
+  // Stick momentum change Δp_a = m_a v_cm − p_a = m_red (v_b − v_a) ([NBS18] eq. (12), (14)).
   const Vec<D> stick = m_red * (node.velocity_b - node.velocity_a);
   const double d_n = stick.dot(node.normal);  // [NBS18] eq. (15)
   const Vec<D> tangential = stick - d_n * node.normal;
@@ -99,7 +99,7 @@ ContactExchange<D> exchange_momentum(const ContactNode<D>& node, const FrictionL
 
   // Contact needs approach, Δv·n < 0 ⟺ d_n < 0, and a closed gap ([NBS18] §2.4).
   if (!(d_n < 0.0) || !node.gap_closed) {
-    // Separated surfaces move freely unless tensile adhesion holds them ([NBS18] eq. (25).
+    // Separated surfaces move freely unless tensile adhesion holds them ([NBS18] eq. (25)).
     const auto* adhesive = std::get_if<AdhesiveFriction>(&law);
     if (adhesive != nullptr && adhesive->tensile_strength > 0.0 &&
         adhesion_holds(*adhesive, d_n, d_t, area_dt)) {
@@ -126,13 +126,13 @@ ContactExchange<D> exchange_momentum(const ContactNode<D>& node, const FrictionL
     return out;
   }
 
-  // Slide: keep the full normal change, limit the tangential one ([NBS18] eq. (17).
+  // Slide: keep the full normal change, limit the tangential one ([NBS18] eq. (17)).
   const Vec<D> t_hat = tangential / d_t;
   out.sliding = true;
   out.momentum_change_a = d_n * node.normal + s * t_hat;
   out.slip_speed = (d_t - s) / m_red;  // [NBS18] eq. (21)
 
-  // Friction work. First order ([NBS18] eq. (27): W₁ = s (d_t − s)/m_red, the sliding impulse times the
+  // Friction work. First order ([NBS18] eq. (27)): W₁ = s (d_t − s)/m_red, the sliding impulse times the
   // final slip speed. Second order (eq. (31)-(36)): the relative slip velocity varies linearly over the
   // step, v(t) = (d_t − s)/m_red + (f_t − s/Δt)(t − Δt)/m_red with f_t = Δf_a·t̂ (eq. (29)-(30));
   // W₂ = s (f_t Δt − s)/m_red (eq. (33)) and v(0) = (W₁ − W₂)/s (eq. (32)). If v(0) ≥ 0 the slip lasted

@@ -1,5 +1,5 @@
-// Damage laws: Rankine with mesh-regularised linear softening ([XLS21] eq. (19)-(21), time to failure
-// ([HH17] eq. (24), Weibull strengths ([HH17] eq. (25), stress degradation ([HH17] eq. (26)-(27); [XLS21] eq. (7) and
+// Damage laws: Rankine with mesh-regularised linear softening ([XLS21] eq. (19)-(21)), time to failure
+// ([HH17] eq. (24)), Weibull strengths ([HH17] eq. (25)), stress degradation ([HH17] eq. (26)-(27); [XLS21] eq. (7)) and
 // the energy that damage dissipates.
 #include "fragmpm/mpm/damage_law.hpp"
 
@@ -13,7 +13,7 @@
 namespace fragmpm::mpm {
 namespace {
 
-/// H̄ = σ_f² / (2 E G_f) [1/m] ([XLS21] eq. (21).
+/// H̄ = σ_f² / (2 E G_f) [1/m] ([XLS21] eq. (21)).
 double brittleness(double strength, const RankineSoftening& law) {
   return strength * strength / (2.0 * law.youngs_modulus * law.fracture_energy);
 }
@@ -44,7 +44,7 @@ double rankine_largest_characteristic_length(double strength, const RankineSofte
 // anything is in tension, σ₁ > 0, and then σ₃₃ − σ₁ = ν σ₂ − (1 − ν) σ₁ ≤ ν σ₁ − (1 − ν) σ₁ =
 // (2ν − 1) σ₁ ≤ 0 for ν ≤ ½; when σ₁ ≤ 0 all three are compressive (σ₃₃ ≤ 0). So σ₃₃ never exceeds
 // the largest in-plane principal stress while it could reach σ_f > 0, and the in-plane maximum is
-// the Rankine equivalent stress ([XLS21] eq. (19).
+// the Rankine equivalent stress ([XLS21] eq. (19)).
 template <int D>
 double largest_principal_stress(const Mat<D>& stress) {
   if constexpr (D == 2) {
@@ -93,7 +93,7 @@ template <int D>
 Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation degradation) {
   if (damage <= 0.0) return trial_stress;
   if (degradation == Degradation::isotropic) return (1.0 - damage) * trial_stress;  // [XLS21] eq. (7)
-  // [HH17] eq. (26)-(27): scale the tensile principal stresses, keep the compressive ones, rebuild with
+  // 001 eq. (26-27): scale the tensile principal stresses, keep the compressive ones, rebuild with
   // the same eigenvectors.
   Eigensolver<D> es;
   es.computeDirect(trial_stress);

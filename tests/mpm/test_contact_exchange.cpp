@@ -49,7 +49,7 @@ ContactExchange<2> run(const ContactNode<2>& node, const FrictionLaw& law,
 
 TEST(ContactExchange, CoulombSlideIsEq20AndStickIsCentreOfMass) {
   const CoulombFriction law{0.3};
-  // Slide: d_t = 1.2·2 = 2.4 > μ N* = 0.36 → Δp′ = d_n (n − μ t̂) with t̂ = +x ([NBS18] eq. (20).
+  // Slide: d_t = 1.2·2 = 2.4 > μ N* = 0.36 → Δp′ = d_n (n − μ t̂) with t̂ = +x ([NBS18] eq. (20)).
   const auto node = two_field_node(2.0);
   const auto ex = run(node, law);
   ASSERT_TRUE(ex.in_contact);
@@ -59,7 +59,7 @@ TEST(ContactExchange, CoulombSlideIsEq20AndStickIsCentreOfMass) {
   EXPECT_NEAR(ex.normal_impulse, normal_star, 1e-14);
   EXPECT_NEAR(ex.slip_speed, 2.0 - 0.3 * normal_star / m_red, 1e-14);
 
-  // Stick: d_t = 1.2·0.25 = 0.3 < 0.36 → both fields take the centre-of-mass velocity ([NBS18] eq. (12)-(13).
+  // Stick: d_t = 1.2·0.25 = 0.3 < 0.36 → both fields take the centre-of-mass velocity ([NBS18] eq. (12)-(13)).
   const auto stuck_node = two_field_node(0.25);
   const auto stuck = run(stuck_node, law);
   ASSERT_TRUE(stuck.in_contact);
@@ -244,7 +244,7 @@ TEST(ContactExchange, SeparatingOrGappedFieldsAreUntouched) {
   EXPECT_FALSE(apart.in_contact);
   EXPECT_EQ(apart.momentum_change_a, Vec<2>::Zero());
   EXPECT_EQ(apart.friction_work, 0.0);
-  // Approaching but the position test says the surfaces are apart ([NBS18] eq. (8).
+  // Approaching but the position test says the surfaces are apart ([NBS18] eq. (8)).
   auto gapped = two_field_node(1.0);
   gapped.gap_closed = false;
   EXPECT_FALSE(run(gapped, CoulombFriction{0.5}).in_contact);
@@ -353,7 +353,7 @@ TEST(ContactExchange, SecondOrderWorkClosesEnergyBalanceUnderConstantForces) {
 
 TEST(ContactExchange, ContactAreaSumsToTheNodeSpacingAcrossAStraightInterface) {
   // Interface parallel to the grid at height y₀ between nodes at y = 0 and y = h, material a below:
-  // with bilinear weights Ω_b(node 0) = h (h − y₀)²/(2h) and Ω_a(node h) = h y₀²/(2h) ([NBS18] eq. (5).
+  // with bilinear weights Ω_b(node 0) = h (h − y₀)²/(2h) and Ω_a(node h) = h y₀²/(2h) ([NBS18] eq. (5)).
   const double h = 2e-3, t = 1e-3;
   for (double y0 : {0.0, 0.3e-3, 1.0e-3, 1.7e-3}) {
     const double lower = contact_area_2d(h * h, h * h - 0.5 * (h - y0) * (h - y0), 0.5 * (h - y0) * (h - y0), h, t);
@@ -368,7 +368,7 @@ TEST(ContactExchange, ContactAreaSumsToTheNodeSpacingAcrossAStraightInterface) {
 
 namespace {
 
-/// Ω_j and g_j ([NBS18] eq. (5)-(6) of node (0, 0) with bilinear hats of spacing h for the field occupying
+/// Ω_j and g_j ([NBS18] eq. (5)-(6)) of node (0, 0) with bilinear hats of spacing h for the field occupying
 /// the rectangle [x0, x1] × [y0, y1], by the midpoint rule on n × n tiles per cell (the exact
 /// Σ S_ip V_p, Σ G_ip V_p of a CPDI/GIMP tiling in the limit).
 struct FieldIntegrals {

@@ -1,4 +1,4 @@
-// Kernel damage field and DFG partitioning rules ([HH17] eq. (17)-(19), Alg. 1-2; [XLS21] eq. (67)-(69), and the
+// Kernel damage field and DFG partitioning rules ([HH17] eq. (17)-(19), Alg. 1-2; [XLS21] eq. (67)-(69)), and the
 // Verlet neighbour lists they run on.
 //
 // Exact answers used: on a square (cubic) lattice the neighbourhood of an interior particle is

@@ -1,6 +1,6 @@
-// Damage laws against their closed forms: Rankine linear softening ([XLS21] eq. (19)-(21) along uniaxial
+// Damage laws against their closed forms: Rankine linear softening ([XLS21] eq. (19)-(21)) along uniaxial
 // tension, the fracture energy of one softening element, the snap-back limit, degradation of the
-// stress ([HH17] eq. (26)-(27); [XLS21] eq. (7), time to failure ([HH17] eq. (24) and Weibull strengths ([HH17] eq. (25).
+// stress ([HH17] eq. (26)-(27); [XLS21] eq. (7)), time to failure ([HH17] eq. (24)) and Weibull strengths ([HH17] eq. (25)).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -203,7 +203,7 @@ TEST(DamageLaw, SpectralDegradationKeepsCompressionAndRemovesTension) {
   // Undamaged: unchanged.
   EXPECT_EQ(mpm::degrade_stress<2>(sigma, 0.0, mpm::Degradation::tensile_spectral), sigma);
 
-  // Isotropic ([XLS21] eq. (7) scales everything, compression included.
+  // Isotropic ([XLS21] eq. (7)) scales everything, compression included.
   EXPECT_LT((mpm::degrade_stress<2>(sigma, 0.25, mpm::Degradation::isotropic) - 0.75 * sigma).norm(), 1e-9);
   EXPECT_LT(mpm::degrade_stress<2>(sigma, 1.0, mpm::Degradation::isotropic).norm(), 1e-9);
 }

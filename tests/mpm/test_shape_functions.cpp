@@ -1,6 +1,6 @@
 // Shape-function invariants: partition of unity, zero-sum gradients (a constant field has zero
 // gradient), exact gradient of a linear field, and CPDI = linear for an undeformed particle inside
-// one cell (the bilinear hat averaged over a centred box equals its centre value, [XLS21] eq. (52)-(53).
+// one cell (the bilinear hat averaged over a centred box equals its centre value, [XLS21] eq. (52)-(53)).
 #include <gtest/gtest.h>
 
 #include <random>

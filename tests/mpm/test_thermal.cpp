@@ -95,7 +95,7 @@ TEST(ThermalPhysics, AdiabaticRatioIsAFunctionOfStateAndHeatsInCompression) {
   const double up = mpm::adiabatic_temperature_ratio(K, alpha, rho, c, 1.0, 0.98, 1.0);
   EXPECT_GT(down, 1.0);
   EXPECT_NEAR(down * up, 1.0, 1e-15);
-  // Small change: θ̇/θ = −3α U″(J) J̇ /(ρ₀ c) with U″(1) = K ([XLS21] eq. (39).
+  // Small change: θ̇/θ = −3α U″(J) J̇ /(ρ₀ c) with U″(1) = K ([XLS21] eq. (39)).
   const double small = mpm::adiabatic_temperature_ratio(K, alpha, rho, c, 1.0, 1.0, 1.0 - 1e-6);
   EXPECT_NEAR((small - 1.0) / 1e-6, 3.0 * alpha * K / (rho * c), 1e-5 * 3.0 * alpha * K / (rho * c));
   // Fully damaged and isotropically degraded: no coupling left.
@@ -235,7 +235,7 @@ TEST(ThermalSolver, ConductionMatchesTheErfcSolution) {
 }
 
 TEST(ThermalSolver, ContactFaceTemperaturesOfPressedBlocksMatchEq90) {
-  // V3: steady conduction through two pressed blocks with h_c = γ̄|p| ([XLS21] eq. (13), (90), three
+  // V3: steady conduction through two pressed blocks with h_c = γ̄|p| ([XLS21] eq. (13), (90)), three
   // pressures; the contact heat uses the step's normal contact impulse (eq. (82)).
   pipeline::VerifyOptions options;
   options.quick = true;
@@ -344,7 +344,7 @@ TEST(ThermalScene, ThermalDataWithoutHeatCapacityIsRefusedWithFileLineAndKey) {
 }
 
 TEST(ThermalContact, FrictionalHeatEqualsFrictionWorkAtAWall) {
-  // A block sliding on a floor with Coulomb friction: all friction work of the wall ([NBS18] eq. (27)
+  // A block sliding on a floor with Coulomb friction: all friction work of the wall ([NBS18] eq. (27))
   // becomes heat of the block, so the heat content equals /series/friction_work.
   const char* scene = R"toml(
 [grid]
@@ -430,7 +430,7 @@ TEST(ThermalContact, PerfectlyConductingContactPassesTheBulkFlux) {
 
 TEST(ThermalContact, ThermalSofteningFrictionVanishesAtTheDamageTemperature) {
   // A slider pushed onto a base by gravity slides with μ(θ) = μ₀⟨θ_dam − θ⟩²/(θ_dam − θ_ref)²
-  // ([XLS21] eq. (15), θ from the nodal temperatures of the two fields: at θ_ref it does friction work,
+  // ([XLS21] eq. (15)), θ from the nodal temperatures of the two fields: at θ_ref it does friction work,
   // at and above θ_dam none at all.
   const std::string scene = R"toml(
 [grid]

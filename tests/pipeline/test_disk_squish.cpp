@@ -1,5 +1,5 @@
 // Issue 4 (thermo-mechanical coupling): the P3 disk-squish scenes and the hot-interface stability
-// scene. Frictional heat equals friction work ([XLS21] eq. (14), (82); friction vanishes at θ_dam ([XLS21]
+// scene. Frictional heat equals friction work ([XLS21] eq. (14), (82)); friction vanishes at θ_dam ([XLS21]
 // eq. (15)).
 #include <gtest/gtest.h>
 
@@ -66,7 +66,7 @@ TEST(DiskSquish, FrictionalHeatEqualsFrictionWork) {
   EXPECT_NEAR(row.thermal, row.totals.friction_work, 1e-9 * row.totals.friction_work);
   const auto& T = solver.particles().temperature;
   EXPECT_GT(*std::max_element(T.begin(), T.end()), 293.15 + 1.0);  // the contact has warmed
-  // No cooling source without expansion; conduction rates interpolated from the grid ([XLS21] eq. (62)
+  // No cooling source without expansion; conduction rates interpolated from the grid ([XLS21] eq. (62))
   // leave an ambient particle next to a heated node within a fraction of a millikelvin (measured
   // −1.6e-4 K against a contact that warms by hundreds of kelvin).
   EXPECT_GE(*std::min_element(T.begin(), T.end()), 293.15 - 1e-3);

@@ -378,7 +378,7 @@ fields = ["x", "damage", "stress"]
   EXPECT_DOUBLE_EQ(shaker.velocity.frequency, 1000.0);
   EXPECT_DOUBLE_EQ(shaker.velocity.phase, std::numbers::pi / 2);
   EXPECT_FALSE(shaker.region.bounded);
-  // A delayed sinusoid ([NBS18] eq. (44): at rest until t_start, then v_max sin ω(t − t1); after half a
+  // A delayed sinusoid ([NBS18] eq. (44)): at rest until t_start, then v_max sin ω(t − t1); after half a
   // period it has moved 2 v_max/ω, and a bounded wall acts only inside its (moving) box.
   const auto& driver = p.walls[3];
   EXPECT_DOUBLE_EQ(driver.velocity.t_start, 1e-3);

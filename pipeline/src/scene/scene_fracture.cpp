@@ -22,7 +22,7 @@ std::optional<bool> optional_bool(const Section& s, std::string_view k) {
   return n->as_boolean()->get();
 }
 
-/// E = 9 K G / (3 K + G) [Pa], for the brittleness H̄ = σ_f² / (2 E G_f) ([XLS21] eq. (21).
+/// E = 9 K G / (3 K + G) [Pa], for the brittleness H̄ = σ_f² / (2 E G_f) ([XLS21] eq. (21)).
 double youngs_modulus(const mpm::MaterialSpec& m) {
   return 9.0 * m.bulk_modulus * m.shear_modulus / (3.0 * m.bulk_modulus + m.shear_modulus);
 }
@@ -61,7 +61,7 @@ std::string plain(double v) {
   return buf;
 }
 
-/// The snap-back check of [XLS21] eq. (20)-(21) for one strength: H̄ l_ch < 1 with l_ch the particle
+/// The snap-back check of 000 eq. (20-21) for one strength: H̄ l_ch < 1 with l_ch the particle
 /// size (the solver's characteristic length; see rankine_softening_modulus).
 void check_softening(const Section& m, const mpm::MaterialSpec& spec, const mpm::RankineSoftening& law,
                      double strength, const std::string& which_strength, const mpm::GridSpec<2>& grid,
@@ -77,7 +77,7 @@ void check_softening(const Section& m, const mpm::MaterialSpec& spec, const mpm:
            "expected a characteristic length below " + si(mpm::rankine_largest_characteristic_length(strength, law), "m") +
                " for material '" + spec.name + "' (snap-back: H̄ l_ch = " +
                plain(strength * strength * l_ch / (2.0 * law.youngs_modulus * law.fracture_energy)) +
-               " >= 1, [XLS21] eq. (20)-(21), got " + si(l_ch, "m"));
+               " >= 1, [XLS21] eq. (20)-(21)), got " + si(l_ch, "m"));
   const double gf_min = strength * strength * l_ch / (2.0 * law.youngs_modulus);
   m.fail("fracture_energy",
          "expected a cell fine enough for the softening of material '" + spec.name +
@@ -87,7 +87,7 @@ void check_softening(const Section& m, const mpm::MaterialSpec& spec, const mpm:
              si(law.fracture_energy, "J/m2") + " and l_ch = particle size " + si(l_ch, "m") +
              " (grid.cell_size = " + si(grid.cell_size, "m") + "); the largest admissible cell size is " +
              si(h_max, "m") + " (strictly below), or a fracture energy above " + si(gf_min, "J/m2") +
-             " at this cell size ([XLS21] eq. (20)-(21)");
+             " at this cell size ([XLS21] eq. (20)-(21))");
 }
 
 }  // namespace
@@ -113,7 +113,7 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
   if (law != "rankine" && law != "time-to-failure")
     m.expected("damage", "one of \"none\", \"rankine\", \"time-to-failure\"");
 
-  // Strength: uniform σ_f, or a Weibull field ([HH17] eq. (25) whose σ̄_f may come from `strength`.
+  // Strength: uniform σ_f, or a Weibull field ([HH17] eq. (25)) whose σ̄_f may come from `strength`.
   if (!m.has("strength") && !m.has("weibull"))
     m.fail("strength", "missing required key: expected strength (a pressure, e.g. \"50 MPa\") or a weibull table "
                        "for damage = \"" + law + "\"");
@@ -139,7 +139,7 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
   const std::string degradation = m.optional_string("degradation").value_or("tensile");
   if (degradation == "tensile") spec.degradation = mpm::Degradation::tensile_spectral;
   else if (degradation == "isotropic") spec.degradation = mpm::Degradation::isotropic;
-  else m.expected("degradation", "one of \"tensile\" (spectral, [HH17] eq. (26)-(27), \"isotropic\" ([XLS21] eq. (7)");
+  else m.expected("degradation", "one of \"tensile\" (spectral, [HH17] eq. (26)-(27)), \"isotropic\" ([XLS21] eq. (7))");
 
   if (law == "rankine") {
     if (m.has("crack_speed"))
@@ -162,7 +162,7 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
       m.fail("fracture_energy", "expected fracture_energy only with damage = \"rankine\", got it with \"time-to-failure\"");
     mpm::TimeToFailure t;
     t.crack_speed = m.quantity("crack_speed", QK::velocity);
-    if (!(t.crack_speed > 0.0)) m.expected("crack_speed", "a positive crack speed c_f ([HH17] eq. (24)");
+    if (!(t.crack_speed > 0.0)) m.expected("crack_speed", "a positive crack speed c_f ([HH17] eq. (24))");
     spec.damage = t;
   }
 }
@@ -281,13 +281,13 @@ mpm::ContactSpec<2> read_contact(const Section& c) {
   const std::string heating = c.optional_string("friction_heating").value_or("second-order");
   if (heating == "second-order") spec.friction_work_order = mpm::FrictionWorkOrder::second;
   else if (heating == "first-order") spec.friction_work_order = mpm::FrictionWorkOrder::first;
-  else c.expected("friction_heating", "one of \"second-order\" ([NBS18] eq. (34)-(36), \"first-order\" ([NBS18] eq. (27)");
+  else c.expected("friction_heating", "one of \"second-order\" ([NBS18] eq. (34)-(36)), \"first-order\" ([NBS18] eq. (27))");
   if (auto d = c.optional_number("critical_damage")) {
     if (!(*d > 0.0 && *d <= 1.0)) c.expected("critical_damage", "a damage level 0 < D_cr <= 1");
     spec.critical_damage = *d;
   }
   if (auto d = c.optional_number("minimum_damage")) {
-    if (!(*d >= 0.0 && *d < 1.0)) c.expected("minimum_damage", "a damage level 0 <= D_min < 1 ([HH17] eq. (21)");
+    if (!(*d >= 0.0 && *d < 1.0)) c.expected("minimum_damage", "a damage level 0 <= D_min < 1 ([HH17] eq. (21))");
     spec.minimum_damage = *d;
   }
   if (auto f = c.optional_number("rebuild_fraction")) {

@@ -19,14 +19,14 @@ const std::vector<std::string_view>& damage_keys();
 /// Reads damage, strength, fracture_energy, crack_speed, degradation and weibull of one material
 /// into `spec` (whose elastic constants are already set). `thickness` is [physics] thickness [m]
 /// (needed for Weibull volumes in 2D). For Rankine softening, refuses a cell whose diagonal
-/// l_ch = h √2 makes H̄ l_ch ≥ 1 (snap-back, [XLS21] eq. (20)-(21), naming the largest admissible cell size;
+/// l_ch = h √2 makes H̄ l_ch ≥ 1 (snap-back, [XLS21] eq. (20)-(21)), naming the largest admissible cell size;
 /// `particle_spacing` s = h/n gives the particle volume s² × thickness at which a Weibull material's
 /// median strength is checked.
 void read_damage(const Section& material, mpm::MaterialSpec& spec, std::optional<double> thickness,
                  const mpm::GridSpec<2>& grid, double particle_spacing);
 
 /// Fills Particles::strength: +inf for materials without damage, σ_f for a uniform strength, and a
-/// Weibull draw ([HH17] eq. (25) per particle otherwise, one seeded stream per material over its
+/// Weibull draw ([HH17] eq. (25)) per particle otherwise, one seeded stream per material over its
 /// particles in particle order. Warns on stderr when drawn Rankine strengths snap back at this cell.
 void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& material_sections);
 
@@ -45,7 +45,7 @@ mpm::TractionLoad<2> read_load(const Section& load, std::size_t index, const mpm
 /// than a traction.
 bool is_heat_load(const Section& load);
 
-/// A heat-input [[loads]] entry (same particle selection as a traction; [XLS21] eq. (44), (57).
+/// A heat-input [[loads]] entry (same particle selection as a traction; [XLS21] eq. (44), (57)).
 mpm::HeatFluxLoad read_heat_load(const Section& load, std::size_t index, const mpm::Problem<2>& problem,
                                  const std::map<std::string, std::vector<std::int32_t>>& bodies);
 

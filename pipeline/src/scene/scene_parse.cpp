@@ -91,10 +91,10 @@ void read_time(const Section& t, mpm::TimeSpec& time) {
   }
   time.pic_fraction = t.optional_number("pic_fraction").value_or(0.0);
   if (!(time.pic_fraction >= 0.0 && time.pic_fraction <= 1.0))
-    t.expected("pic_fraction", "a PIC fraction 0 <= pic_fraction <= 1 ([XLS21] eq. (64)");
+    t.expected("pic_fraction", "a PIC fraction 0 <= pic_fraction <= 1 ([XLS21] eq. (64))");
   time.thermal_pic_fraction = t.optional_number("thermal_pic_fraction").value_or(0.0);
   if (!(time.thermal_pic_fraction >= 0.0 && time.thermal_pic_fraction <= 1.0))
-    t.expected("thermal_pic_fraction", "a PIC fraction 0 <= thermal_pic_fraction <= 1 (0 = [XLS21] eq. (62)");
+    t.expected("thermal_pic_fraction", "a PIC fraction 0 <= thermal_pic_fraction <= 1 (0 = [XLS21] eq. (62))");
 }
 
 mpm::MaterialSpec read_material(const Section& m, std::optional<double> thickness, const mpm::GridSpec<2>& grid,

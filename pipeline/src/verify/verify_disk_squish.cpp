@@ -1,7 +1,7 @@
 // P3: disk squish with frictional heating (docs/verification.md; [XLS21] §4.4, Table 3; layout after [HH17]
 // Fig. 9). Three variants of scenes/paper/disk-squish-*.toml: isothermal (no thermal module,
 // Coulomb μ = 0.4), coupled (thermal module, Coulomb μ = 0.4: frictional and structural heating,
-// friction independent of temperature) and softening (thermal module, μ(θ) of [XLS21] eq. (15).
+// friction independent of temperature) and softening (thermal module, μ(θ) of [XLS21] eq. (15)).
 // Metrics per variant: the peak contact temperature (the hottest particle over the run; frictional
 // heat enters at the contact nodes and the run is near the adiabatic limit, so the hottest
 // particles are the contact particles — structural heating alone is about 1 K), the mean speed of
@@ -133,7 +133,7 @@ std::vector<VerifyRow> verify_disk_squish(const VerifyOptions& options) {
   add("coupled", coupled, "disk_rise_mm (largest; target < 5.13)", 1e3 * coupled.disk_rise, 1e3 * iso.disk_rise, -inf,
       5.13);
   add("coupled", coupled, "friction_work_J_per_m", coupled.friction_work, nan, -inf, inf);
-  // Frictional heat is the friction work ([XLS21] eq. (14), (82); thermo-elastic and coupling heating add
+  // Frictional heat is the friction work ([XLS21] eq. (14), (82)); thermo-elastic and coupling heating add
   // a little (reference = friction work).
   add("coupled", coupled, "heat_content_J_per_m (vs friction work)", coupled.heat, coupled.friction_work, -inf, inf);
   add("softening", soft, "peak_contact_temperature_K", soft.peak_temperature, coupled.peak_temperature, -inf, inf);

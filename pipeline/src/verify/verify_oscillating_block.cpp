@@ -1,6 +1,6 @@
 // V7: oscillating-block frictional heating (docs/verification.md; [NBS18] §3, Fig. 6-7). The scene
 // scenes/verify/oscillating-block.toml is run at fixed steps Δt = C Δx / v ([NBS18] eq. (45), v the bulk
-// wave speed) over CFL factors C, with second-order ([NBS18] eq. (31)-(36) and first-order (eq. (27))
+// wave speed) over CFL factors C, with second-order ([NBS18] eq. (31)-(36)) and first-order (eq. (27))
 // frictional work. Metric: the friction work of the driven interval, W(t_end) − W(t1), per unit
 // thickness. There is no closed form ([NBS18] §3); the reference is the second-order value at the
 // smallest C run, the stand-in for the limit C → 0. The work done by the driving walls over the

@@ -89,7 +89,7 @@ struct Reference {
 Reference oracle(const SlidingBlockLoading& b, const mpm::FrictionLaw& law) {
   if (const auto closed = rigid_block_friction(law))
     return {rigid_block_velocity(b, *closed, b.end_time), rigid_block_friction_work(b, *closed, b.end_time)};
-  // The smooth static/dynamic law ([NBS18] eq. (42) has no closed-form block motion: integrate it.
+  // The smooth static/dynamic law ([NBS18] eq. (42)) has no closed-form block motion: integrate it.
   const RigidBlockState s = integrate_rigid_block(b, law, b.end_time, oracle_steps);
   return {s.velocity, s.friction_work};
 }

@@ -1,8 +1,8 @@
 #pragma once
-// Kernel damage field and its gradient at the particles ([HH17] eq. (17)-(19); [XLS21] eq. (67), the Verlet
+// Kernel damage field and its gradient at the particles ([HH17] eq. (17)-(19); [XLS21] eq. (67)), the Verlet
 // neighbour lists it runs on ([HH17] §2.5), and the node-level rules of damage-field-gradient
-// partitioning: the nonlocal nodal gradient ([HH17] Alg. 1; [XLS21] eq. (69) and the field a particle maps
-// to at a node ([HH17] Alg. 2; [XLS21] eq. (68).
+// partitioning: the nonlocal nodal gradient ([HH17] Alg. 1; [XLS21] eq. (69)) and the field a particle maps
+// to at a node ([HH17] Alg. 2; [XLS21] eq. (68)).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -133,7 +133,7 @@ inline double damage_kernel(double rbar) {
   return rbar >= 1.0 ? 0.0 : 1.0 - rbar * rbar * (3.0 - 2.0 * rbar);
 }
 
-/// Normalised kernel damage field at the particles and its gradient ([HH17] eq. (17)-(19); [XLS21] eq. (67):
+/// Normalised kernel damage field at the particles and its gradient ([HH17] eq. (17)-(19); [XLS21] eq. (67)):
 ///   D̄(x_p) = Σ_q d̂_q ω(r̄_pq) / Σ_q ω(r̄_pq),  r̄_pq = |x_p − x_q| / r_p,
 /// summed over q = p and the listed neighbours closer than r_p, and by the quotient rule
 ///   ∇D̄(x_p) = Σ_q (d̂_q − D̄_p) ∇ω_pq / Σ_q ω_pq,  ∇ω_pq = −6 (1 − r̄) (x_p − x_q) / r_p²

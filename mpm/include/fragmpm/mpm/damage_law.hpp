@@ -12,14 +12,14 @@ namespace fragmpm::mpm {
 /// No damage: the material stays elastic.
 struct NoDamage {};
 
-/// Rankine with mesh-regularised linear softening ([XLS21] eq. (19)-(21); [HH17] eq. (23). The strength σ_f is
+/// Rankine with mesh-regularised linear softening ([XLS21] eq. (19)-(21); [HH17] eq. (23)). The strength σ_f is
 /// per particle (Particles::strength), so a Weibull field can replace the uniform value.
 struct RankineSoftening {
   double fracture_energy = 0.0;  ///< G_f [J/m²]
   double youngs_modulus = 0.0;   ///< E [Pa], for the brittleness H̄ = σ_f² / (2 E G_f) (eq. (21))
 };
 
-/// Time to failure ([HH17] eq. (24): once the largest principal stress reaches σ_f, d grows by Δt/τ
+/// Time to failure ([HH17] eq. (24)): once the largest principal stress reaches σ_f, d grows by Δt/τ
 /// per step with τ = l_ch / c_f (the paper's "τ = c_f/ℓ" is a transit time, so ℓ/c_f).
 struct TimeToFailure {
   double crack_speed = 0.0;  ///< c_f [m/s]
@@ -29,11 +29,11 @@ using DamageLaw = std::variant<NoDamage, RankineSoftening, TimeToFailure>;
 
 /// How damage degrades the stress.
 enum class Degradation {
-  tensile_spectral,  ///< only tensile principal stresses scale by (1 − d) ([HH17] eq. (26)-(27)
-  isotropic,         ///< σ = (1 − d) σ^E ([XLS21] eq. (7)
+  tensile_spectral,  ///< only tensile principal stresses scale by (1 − d) ([HH17] eq. (26)-(27))
+  isotropic,         ///< σ = (1 − d) σ^E ([XLS21] eq. (7))
 };
 
-/// Weibull strength per particle ([HH17] eq. (25): σ_f / σ̄_f = (V̄/V · ln ℛ / ln ½)^{1/m}.
+/// Weibull strength per particle ([HH17] eq. (25)): σ_f / σ̄_f = (V̄/V · ln ℛ / ln ½)^{1/m}.
 struct WeibullStrength {
   double reference_strength = 0.0;  ///< σ̄_f [Pa]
   double reference_volume = 0.0;    ///< V̄ [m³]
@@ -46,7 +46,7 @@ struct WeibullStrength {
 // Damage mechanics (implemented in damage_law.cpp; D = 2 plane strain and D = 3 instantiated).
 
 /// Mesh-regularised damage modulus H_s = H̄ l_ch / (1 − H̄ l_ch) with the brittleness
-/// H̄ = σ_f² / (2 E G_f) ([XLS21] eq. (20)-(21). `strength` σ_f [Pa], `characteristic_length` l_ch [m]:
+/// H̄ = σ_f² / (2 E G_f) ([XLS21] eq. (20)-(21)). `strength` σ_f [Pa], `characteristic_length` l_ch [m]:
 /// the width of the band the damage localises in. The solver passes the particle size V₀^(1/D),
 /// not the paper's cell diagonal: damage is a particle variable, so a crack localises in one row
 /// of particles, and only l_ch = that row's width makes the band dissipate G_f per unit crack area
@@ -55,7 +55,7 @@ struct WeibullStrength {
 /// regularised softening exists at this particle size.
 double rankine_softening_modulus(double strength, const RankineSoftening& law, double characteristic_length);
 
-/// Largest characteristic length l_ch [m] with H̄ l_ch < 1 ([XLS21] eq. (21): every l_ch strictly below
+/// Largest characteristic length l_ch [m] with H̄ l_ch < 1 ([XLS21] eq. (21)): every l_ch strictly below
 /// 1/H̄ = 2 E G_f / σ_f² is admissible.
 double rankine_largest_characteristic_length(double strength, const RankineSoftening& law);
 
@@ -63,9 +63,9 @@ double rankine_largest_characteristic_length(double strength, const RankineSofte
 /// with strength σ_f [Pa] and characteristic length l_ch [m], over a step dt [s]. `history` keeps
 /// the largest principal stress max_t σ̄₁ seen so far [Pa] (the R of [XLS21] eq. (19) is
 /// max(σ_f, history)); `damage` is d ∈ [0, 1]; both are updated in place and never decrease.
-///  * RankineSoftening: d = (1 + H_s)(1 − σ_f / R), capped at 1 ([XLS21] eq. (20).
+///  * RankineSoftening: d = (1 + H_s)(1 − σ_f / R), capped at 1 ([XLS21] eq. (20)).
 ///  * TimeToFailure: once σ̄₁ has reached σ_f, d ← min(1, d + dt/τ) every step with τ = l_ch / c_f
-///    ([HH17] eq. (24), also after the stress has dropped again.
+///    ([HH17] eq. (24)), also after the stress has dropped again.
 ///  * NoDamage: nothing changes.
 template <int D>
 void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double strength,
@@ -77,8 +77,8 @@ template <int D>
 double largest_principal_stress(const Mat<D>& stress);
 
 /// Degraded Cauchy stress [Pa] from the trial stress σ̄ and damage d: tensile principal stresses
-/// scaled by (1 − d), compressive ones kept, same eigenvectors ([HH17] eq. (26)-(27); or σ = (1 − d) σ̄
-/// ([XLS21] eq. (7).
+/// scaled by (1 − d), compressive ones kept, same eigenvectors ([HH17] eq. (26)-(27)); or σ = (1 − d) σ̄
+/// ([XLS21] eq. (7)).
 template <int D>
 Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation degradation);
 
@@ -112,7 +112,7 @@ DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F, c
 /// ℛ = ½). In 2D `volume` is an area and is multiplied by the thickness.
 double weibull_median_strength(double volume, const WeibullStrength& weibull, int dimension);
 
-/// Weibull strength per particle [Pa] ([HH17] eq. (25): σ_f = σ̄_f (V̄/V · ln ℛ / ln ½)^{1/m}, ℛ uniform in
+/// Weibull strength per particle [Pa] ([HH17] eq. (25)): σ_f = σ̄_f (V̄/V · ln ℛ / ln ½)^{1/m}, ℛ uniform in
 /// (0, 1) from std::mt19937_64 seeded with `weibull.seed`, drawn in particle order (so a scene and a
 /// seed give the same strengths on every platform). `volumes` are the particles' volumes [m³], or
 /// areas [m²] in 2D, which are multiplied by `weibull.thickness`.

@@ -27,7 +27,7 @@ struct AdhesiveFriction {
 };
 
 /// Smooth static → dynamic transition μ(|Δv′|) = (μ_s v½ + μ_d |Δv′|) / (v½ + |Δv′|), solved for
-/// the final slip velocity ([NBS18] eq. (42)-(43).
+/// the final slip velocity ([NBS18] eq. (42)-(43)).
 struct SmoothStaticDynamicFriction {
   double static_coefficient = 0.0;   ///< μ_s
   double dynamic_coefficient = 0.0;  ///< μ_d
@@ -50,7 +50,7 @@ inline double friction_coefficient(const VelocityDependentFriction& law, double 
   return law.coefficient + law.slope * slip;
 }
 
-/// μ(|Δv′|) = (μ_s v½ + μ_d |Δv′|) / (v½ + |Δv′|) at slip speed `slip` [m/s] ([NBS18] eq. (42).
+/// μ(|Δv′|) = (μ_s v½ + μ_d |Δv′|) / (v½ + |Δv′|) at slip speed `slip` [m/s] ([NBS18] eq. (42)).
 /// v½ = 0 is the sharp static/dynamic law: μ_s at rest, μ_d once sliding.
 inline double friction_coefficient(const SmoothStaticDynamicFriction& law, double slip) {
   const double denominator = law.half_velocity + slip;
@@ -58,7 +58,7 @@ inline double friction_coefficient(const SmoothStaticDynamicFriction& law, doubl
   return (law.static_coefficient * law.half_velocity + law.dynamic_coefficient * slip) / denominator;
 }
 
-/// μ(θ) = μ₀ ⟨θ_dam − θ⟩² / (θ_dam − θ_ref)² at temperature θ [K] ([XLS21] eq. (15).
+/// μ(θ) = μ₀ ⟨θ_dam − θ⟩² / (θ_dam − θ_ref)² at temperature θ [K] ([XLS21] eq. (15)).
 inline double friction_coefficient(const ThermalSofteningFriction& law, double temperature) {
   const double span = law.damage_temperature - law.reference_temperature;
   const double remaining = law.damage_temperature - temperature;

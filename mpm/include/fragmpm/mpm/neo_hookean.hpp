@@ -1,5 +1,5 @@
 #pragma once
-// Compressible neo-Hookean with the volumetric–isochoric split ([XLS21] eq. (16)-(17):
+// Compressible neo-Hookean with the volumetric–isochoric split ([XLS21] eq. (16)-(17)):
 //   ψ = U(J) + W(b̄),  U = K/2 (ln J)²,  W = G/2 (tr b̄ − 3),  b̄ = J^{-2/3} F Fᵀ,
 //   τ = J ∂ψ/∂F Fᵀ = K ln J I + G dev b̄ (Kirchhoff), σ = τ / J.
 // In 2D the deformation is plane strain: F₃₃ = 1, so b₃₃ = 1 enters tr b and dev b̄.

@@ -18,7 +18,7 @@ namespace fragmpm::mpm {
 
 enum class ShapeFunctionKind { linear, ugimp, cpdi };
 
-/// Compressible neo-Hookean ([XLS21] eq. (16)-(17), given by bulk and shear modulus.
+/// Compressible neo-Hookean ([XLS21] eq. (16)-(17)), given by bulk and shear modulus.
 struct MaterialSpec {
   std::string name;
   double bulk_modulus = 0.0;   ///< K [Pa]
@@ -27,7 +27,7 @@ struct MaterialSpec {
   DamageLaw damage = NoDamage{};
   Degradation degradation = Degradation::tensile_spectral;
   double strength = 0.0;       ///< uniform σ_f [Pa] (Particles::strength holds the per-particle value)
-  bool weibull = false;        ///< strengths drawn from `weibull_strength` ([HH17] eq. (25)
+  bool weibull = false;        ///< strengths drawn from `weibull_strength` ([HH17] eq. (25))
   WeibullStrength weibull_strength;
   /// l_ch of the damage law [m]; 0 = the particle size V₀^(1/D) (the width of a one-particle crack
   /// band). The papers list l_ch as an input ([HH17] Tables II-III: 1.414 mm at h = 1 mm).
@@ -76,7 +76,7 @@ struct TractionLoad {
 };
 
 /// Damage-field-gradient partitioning and contact between the two fields of a node (docs/design.md;
-/// [HH17] §2.2-2.4, Alg. 1-3; [XLS21] eq. (67)-(77).
+/// [HH17] §2.2-2.4, Alg. 1-3; [XLS21] eq. (67)-(77)).
 enum class Partitioning {
   automatic,  ///< on when the scene has more than one body or a damaging material
   off,        ///< one velocity field everywhere (the "single-field" comparison runs)
@@ -96,7 +96,7 @@ struct ContactSpec {
   FrictionLaw friction = CoulombFriction{};  ///< between the two fields of a separable node
   /// Separable when the largest d̂ = max(s, d) of a particle mapping to the node reaches
   /// `critical_damage` ([HH17] §2.3: "at least one particle fully damaged") and the mass-weighted
-  /// mean d̂ of each field exceeds `minimum_damage` ([HH17] eq. (21), Alg. 3; [XLS21] eq. (70)-(71).
+  /// mean d̂ of each field exceeds `minimum_damage` ([HH17] eq. (21), Alg. 3; [XLS21] eq. (70)-(71)).
   double critical_damage = 1.0;  ///< D_cr
   double minimum_damage = 0.25;  ///< D_min ([HH17] Table III)
   /// Neighbour lists of the damage field are rebuilt once a particle has moved this fraction of
@@ -106,11 +106,11 @@ struct ContactSpec {
   /// straight crack's normal in the tests, 7° for the principal direction), so principal is the
   /// default; largest is kept to reproduce the paper's algorithm.
   NodalGradientRule nodal_gradient = NodalGradientRule::principal;
-  bool position_gap_test = false;  ///< also require overlapping extrapolated positions ([NBS18] eq. (8)
-  /// Frictional heat per step at two-field nodes and contact walls: second order ([NBS18] eq. (31)-(36)
+  bool position_gap_test = false;  ///< also require overlapping extrapolated positions ([NBS18] eq. (8))
+  /// Frictional heat per step at two-field nodes and contact walls: second order ([NBS18] eq. (31)-(36))
   /// converges in Δt where first order (eq. (27)) needs a ten times smaller step ([NBS18] Fig. 7).
   FrictionWorkOrder friction_work_order = FrictionWorkOrder::second;
-  Vec<D> normal = Vec<D>::Zero();  ///< prescribed contact normal of field 0; zero = from mass gradients ([XLS21] eq. (74)
+  Vec<D> normal = Vec<D>::Zero();  ///< prescribed contact normal of field 0; zero = from mass gradients ([XLS21] eq. (74))
 };
 
 template <int D>

@@ -1,5 +1,5 @@
 #pragma once
-// The explicit DP-MPM step (docs/design.md), update-stress-last with a FLIP/PIC blend ([XLS21] eq. (64)-(66).
+// The explicit DP-MPM step (docs/design.md), update-stress-last with a FLIP/PIC blend ([XLS21] eq. (64)-(66)).
 #include <limits>
 #include <memory>
 #include <optional>

@@ -3,7 +3,7 @@
 // structural heating, damage heating, and the explicit thermal stability limit. The nodal heat
 // transfer that uses these lives in mpm/src/step/thermal_stage.cpp.
 //
-// Free energy per reference volume ([XLS21] eq. (1)-(5), (16):
+// Free energy per reference volume ([XLS21] eq. (1)-(5), (16)):
 //   ρ₀ψ = (1 − d)(U(J) + W(b̄)) − 3(1 − d) α (θ − θ₀) U′(J) + ρ₀ c[(θ − θ₀) − θ ln(θ/θ₀)],
 //   U = K/2 (ln J)²,  U′ = K ln J / J,  U″ = K (1 − ln J) / J².
 #include <cmath>
@@ -14,7 +14,7 @@
 
 namespace fragmpm::mpm {
 
-/// U′(J) = K ln J / J [Pa], the derivative of the volumetric energy U = K/2 (ln J)² ([XLS21] eq. (16).
+/// U′(J) = K ln J / J [Pa], the derivative of the volumetric energy U = K/2 (ln J)² ([XLS21] eq. (16)).
 inline double volumetric_energy_slope(double bulk_modulus, double J) { return bulk_modulus * std::log(J) / J; }
 
 /// Thermal part of the Kirchhoff stress, a pressure times I: τ_θ = J ∂(ρ₀M)/∂J = −3αK(θ − θ₀)(1 − ln J)/J
@@ -33,7 +33,7 @@ Mat<D> thermal_cauchy_stress(double bulk_modulus, double expansion, double tempe
 }
 
 /// Fraction of the volumetric coupling energy M that damage d leaves: (1 − d) for isotropic
-/// degradation ([XLS21] eq. (5); with tensile-only degradation ([HH17] eq. (26)-(27) a compressed particle
+/// degradation ([XLS21] eq. (5)); with tensile-only degradation ([HH17] eq. (26)-(27)) a compressed particle
 /// (J < 1) keeps its volumetric response, so its coupling is undegraded.
 inline double coupling_fraction(double damage, Degradation degradation, double J) {
   if (degradation == Degradation::tensile_spectral && J < 1.0) return 1.0;
@@ -53,7 +53,7 @@ inline double adiabatic_temperature_ratio(double bulk_modulus, double expansion,
   return std::exp(-3.0 * expansion * fraction * change / (density0 * specific_heat));
 }
 
-/// Heat released per reference volume by a damage increment Δd ([XLS21] eq. (28), (40), (43):
+/// Heat released per reference volume by a damage increment Δd ([XLS21] eq. (28), (40), (43)):
 /// ρ₀(D_int − H_in) Δt = [ψ̄ − 3α(θ − θ₀)U′ + 3αθU′] Δd = (ψ̄ + 3 α θ₀ U′(J)) Δd,
 /// with ψ̄ the degradable stored energy (the same ψ_t whose release the mechanics books as
 /// `dissipated`, so the heat equals the recorded damage dissipation plus the coupling term). [J/m³]

@@ -15,13 +15,13 @@ namespace fragmpm::mpm {
 
 /// Thermal constants of one material (index = material index of the problem).
 struct ThermalMaterial {
-  double conductivity = 0.0;           ///< κ [W/(m K)] of q = −κ ∇θ ([XLS21] eq. (18)
-  double specific_heat = 0.0;          ///< c [J/(kg K)] ([XLS21] eq. (4), (38)
-  double expansion = 0.0;              ///< α_t [1/K] ([XLS21] eq. (3)
-  double reference_temperature = 0.0;  ///< θ₀ [K] of the coupling energy M ([XLS21] eq. (3); zero thermal stress at θ₀
+  double conductivity = 0.0;           ///< κ [W/(m K)] of q = −κ ∇θ ([XLS21] eq. (18))
+  double specific_heat = 0.0;          ///< c [J/(kg K)] ([XLS21] eq. (4), (38))
+  double expansion = 0.0;              ///< α_t [1/K] ([XLS21] eq. (3))
+  double reference_temperature = 0.0;  ///< θ₀ [K] of the coupling energy M ([XLS21] eq. (3)); zero thermal stress at θ₀
 };
 
-/// A thermal condition on the material next to a plane ([XLS21] eq. (44), (57): a rigid wall's plane, or a
+/// A thermal condition on the material next to a plane ([XLS21] eq. (44), (57)): a rigid wall's plane, or a
 /// plane that only carries the condition (scene kind = "thermal", no mechanical action).
 enum class ThermalWallKind {
   insulated,    ///< q·n = 0 (the natural condition; the default)
@@ -44,7 +44,7 @@ struct ThermalWallCondition {
 };
 
 /// A heat flux into the material through part of a body's boundary, carried by particles like a
-/// traction load: Q_p = q̄ a_p with a_p the boundary length (2D) the particle carries ([XLS21] eq. (57).
+/// traction load: Q_p = q̄ a_p with a_p the boundary length (2D) the particle carries ([XLS21] eq. (57)).
 struct HeatFluxLoad {
   std::string name;
   std::vector<std::int64_t> particles;
