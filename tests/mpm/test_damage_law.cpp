@@ -307,3 +307,26 @@ TEST(DamageLaw, WeibullMedianSizeEffectAndSeed) {
   // With the same seed the draws are the same ℛ, so every strength scales exactly by 8^{-1/m}.
   for (std::size_t k = 0; k < 100; ++k) EXPECT_NEAR(s_big[k], s[k] * std::pow(8.0, -1.0 / 6.0), 1e-9 * s[k]);
 }
+
+// The solver's one-eigen-solve update equals degrade_stress and degradable_energy taken
+// separately, for stretched, sheared and compressed states with a thermal pressure in the trial
+// stress (isotropic, so coaxial with b).
+TEST(DamageLaw, OneSpectralDecompositionGivesBothDegradedStressAndDegradableEnergy) {
+  const mpm::NeoHookean m = glass();
+  const double pressures[] = {0.0, -40e6, 25e6};
+  for (double pressure : pressures)
+    for (int k = 0; k < 50; ++k) {
+      mpm::Mat<2> F;
+      const double a = 0.002 * std::sin(1.3 * k), b = 0.0015 * std::cos(0.7 * k), s = 0.001 * std::sin(2.1 * k);
+      F << 1.0 + a, s, 0.5 * s, 1.0 + b;
+      const mpm::Mat<2> trial = m.cauchy<2>(F) + pressure * mpm::Mat<2>::Identity();
+      const double psi = m.energy_density<2>(F);
+      for (const auto deg : {mpm::Degradation::tensile_spectral, mpm::Degradation::isotropic}) {
+        const double d = 0.05 + 0.018 * k;
+        const auto both = mpm::degrade_with_energy<2>(m, F, trial, d, deg, psi);
+        const mpm::Mat<2> stress = mpm::degrade_stress<2>(trial, d, deg);
+        EXPECT_NEAR((both.stress - stress).norm(), 0.0, 1e-9 * trial.norm() + 1e-6);
+        EXPECT_NEAR(both.degradable, mpm::degradable_energy<2>(m, F, deg), 1e-9 * psi + 1e-9);
+      }
+    }
+}

@@ -143,3 +143,43 @@ TEST(ShapeFunctions, CpdiGradientMatchesPaperEquation53) {
     EXPECT_NEAR((gradient - expected).norm(), 0.0, 1e-12) << "node " << node.transpose();
   }
 }
+
+// The solver's compact CPDI stencil is the entry-per-corner stencil with the entries of each node
+// summed: same nodes, same weights and gradients to round-off, at most 9 entries in 2D for a
+// domain no larger than a cell, and the fallback for a larger one.
+TEST(ShapeFunctions, CompactCpdiEqualsCpdiSummedByNode) {
+  const auto g = test_grid();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 2.0), d(-0.1, 0.1);
+  for (int trial = 0; trial < 400; ++trial) {
+    const Vec<2> x(u(rng), u(rng));
+    Mat<2> domain;
+    // The first 300 reach less than a cell along each axis (at most 9 nodes); the last 100 span
+    // more than one cell and take the fallback.
+    const bool small = trial < 300;
+    const double size = small ? 0.12 : 0.4, shear = small ? 0.5 : 1.0;
+    domain << size + shear * d(rng), shear * d(rng), shear * d(rng), size + shear * d(rng);
+    Stencil<2> full, compact;
+    cpdi_stencil<2>(x, domain, g, full);
+    cpdi_compact_stencil<2>(x, domain, g, compact);
+    if (small) {
+      EXPECT_LE(compact.count, 9);
+    }
+    expect_invariants(g, compact, x);
+    for (int c = 0; c < compact.count; ++c) {
+      double weight = 0.0;
+      Vec<2> gradient = Vec<2>::Zero();
+      for (int e = 0; e < full.count; ++e)
+        if (full.node[e] == compact.node[c]) {
+          weight += full.weight[e];
+          gradient += full.gradient[e];
+        }
+      int repeats = 0;
+      for (int k = 0; k < compact.count; ++k) repeats += compact.node[k] == compact.node[c];
+      if (repeats == 1) {
+        EXPECT_NEAR(compact.weight[c], weight, 1e-15);
+        EXPECT_NEAR((compact.gradient[c] - gradient).norm(), 0.0, 1e-12 * g.inverse_cell_size);
+      }
+    }
+  }
+}
