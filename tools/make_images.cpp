@@ -1,5 +1,6 @@
 // fragmpm_make_images OUT_DIR [--data DIR]: writes the sample images of images/.
-//   OUT_DIR/synthetic/*.png, *.tif   synthetic micrographs with known answers (segment_synthetic.hpp)
+//   OUT_DIR/synthetic/*.png, *.tif   synthetic micrographs with known answers
+//   (segment_synthetic.hpp)
 //                                    and their ground-truth label images (*_truth.png, 16-bit)
 //   with --data DIR (the shared data folder, see images/PROVENANCE.md):
 //   OUT_DIR/miocene_sandstone_window.png   800 × 600 window of the sandstone class mask
@@ -8,10 +9,9 @@
 // Deterministic: the same build writes the same synthetic images.
 #include <cstdio>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "fragmpm/pipeline/segment_synthetic.hpp"
 
@@ -68,11 +68,15 @@ int main(int argc, char** argv) {
 
   if (argc == 4) {
     const fs::path data = argv[3];
-    const cv::Mat mask = cv::imread((data / "miocene_sandstone_grain_mask.png").string(), cv::IMREAD_UNCHANGED);
-    const cv::Mat photo = cv::imread((data / "torrey_pines_beach_image.jpg").string(), cv::IMREAD_COLOR);
-    const cv::Mat truth = cv::imread((data / "torrey_pines_beach_mask.png").string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat mask =
+        cv::imread((data / "miocene_sandstone_grain_mask.png").string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat photo =
+        cv::imread((data / "torrey_pines_beach_image.jpg").string(), cv::IMREAD_COLOR);
+    const cv::Mat truth =
+        cv::imread((data / "torrey_pines_beach_mask.png").string(), cv::IMREAD_UNCHANGED);
     if (mask.empty() || photo.empty() || truth.empty()) {
-      std::fprintf(stderr, "fragmpm_make_images: cannot read the shared images in %s\n", data.c_str());
+      std::fprintf(stderr, "fragmpm_make_images: cannot read the shared images in %s\n",
+                   data.c_str());
       return 1;
     }
     write(out / "miocene_sandstone_window.png", mask(kSandstoneWindow).clone(), kPng);

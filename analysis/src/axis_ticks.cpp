@@ -1,10 +1,10 @@
 // Axis ticks (see axis_ticks.hpp).
 #include "fragmpm/analysis/axis_ticks.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 namespace fragmpm::analysis {
 
@@ -17,7 +17,8 @@ int decimals_for(double step) {
 
 std::string fixed(double v, int decimals) {
   std::string s = fmt::format("{:.{}f}", v, decimals);
-  if (s.find_first_not_of("-0.") == std::string::npos) s = decimals > 0 ? fmt::format("{:.{}f}", 0.0, decimals) : "0";
+  if (s.find_first_not_of("-0.") == std::string::npos)
+    s = decimals > 0 ? fmt::format("{:.{}f}", 0.0, decimals) : "0";
   return s;
 }
 
@@ -31,7 +32,10 @@ double nice_step(double span, int target) {
   const double raw = span / std::max(target, 1);
   const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
   const double n = raw / magnitude;
-  const double m = n < 1.5 ? 1.0 : n < 3.0 ? 2.0 : n < 7.0 ? 5.0 : 10.0;  // nearest on the 1-2-5 ladder
+  const double m = n < 1.5   ? 1.0
+                   : n < 3.0 ? 2.0
+                   : n < 7.0 ? 5.0
+                             : 10.0;  // nearest on the 1-2-5 ladder
   return m * magnitude;
 }
 
@@ -116,8 +120,9 @@ AxisTicks log_ticks(double lo, double hi, double margin) {
     t.major = all;
   }
   if (t.major.empty()) t.major.push_back(std::pow(10.0, 0.5 * (a + b)));  // a sliver of one decade
-  const bool plain = std::all_of(t.major.begin(), t.major.end(),
-                                 [](double v) { return v >= 1e-3 * (1 - 1e-9) && v <= 1e4 * (1 + 1e-9); });
+  const bool plain = std::all_of(t.major.begin(), t.major.end(), [](double v) {
+    return v >= 1e-3 * (1 - 1e-9) && v <= 1e4 * (1 + 1e-9);
+  });
   for (double v : t.major) {
     const int e = static_cast<int>(std::floor(std::log10(v) + 1e-9));
     const double m = v / std::pow(10.0, e);

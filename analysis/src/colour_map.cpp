@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -45,12 +44,18 @@ Rgb from_hsv(double hue_deg, double s, double v) {
   const double c = v * s, h = hue_deg / 60.0;
   const double x = c * (1.0 - std::abs(std::fmod(h, 2.0) - 1.0));
   double r = 0, g = 0, b = 0;
-  if (h < 1) r = c, g = x;
-  else if (h < 2) r = x, g = c;
-  else if (h < 3) g = c, b = x;
-  else if (h < 4) g = x, b = c;
-  else if (h < 5) r = x, b = c;
-  else r = c, b = x;
+  if (h < 1)
+    r = c, g = x;
+  else if (h < 2)
+    r = x, g = c;
+  else if (h < 3)
+    g = c, b = x;
+  else if (h < 4)
+    g = x, b = c;
+  else if (h < 5)
+    r = x, b = c;
+  else
+    r = c, b = x;
   const double m = v - c;
   auto byte = [m](double u) { return static_cast<std::uint8_t>(std::lround(255.0 * (u + m))); };
   return Rgb{byte(r), byte(g), byte(b)};
@@ -58,7 +63,9 @@ Rgb from_hsv(double hue_deg, double s, double v) {
 
 }  // namespace
 
-Rgb no_data_colour() { return Rgb{160, 160, 160}; }
+Rgb no_data_colour() {
+  return Rgb{160, 160, 160};
+}
 
 Rgb viridis(double t) {
   if (std::isnan(t)) return no_data_colour();
@@ -68,7 +75,8 @@ Rgb viridis(double t) {
 
 Rgb categorical_colour(std::int64_t id) {
   if (id < 0) return no_data_colour();
-  if (id < static_cast<std::int64_t>(qualitative.size())) return qualitative[static_cast<std::size_t>(id)];
+  if (id < static_cast<std::int64_t>(qualitative.size()))
+    return qualitative[static_cast<std::size_t>(id)];
   // Golden-angle hue steps: any two ids close in number are far apart in hue.
   const double golden_angle = 137.50776405003785;
   const double hue = std::fmod(static_cast<double>(id) * golden_angle, 360.0);
@@ -77,6 +85,8 @@ Rgb categorical_colour(std::int64_t id) {
   return from_hsv(hue, s, v);
 }
 
-Rgb series_colour(std::size_t index) { return qualitative[index % qualitative.size()]; }
+Rgb series_colour(std::size_t index) {
+  return qualitative[index % qualitative.size()];
+}
 
 }  // namespace fragmpm::analysis

@@ -1,5 +1,8 @@
 #include "fragmpm/analysis/convex_hull_measures.hpp"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -7,16 +10,15 @@
 #include <numbers>
 #include <vector>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/convex_hull_2.h>
-
 namespace fragmpm::analysis {
 
 namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_2;
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 double direction_angle(const Eigen::Vector2d& d) {
   double a = std::atan2(d.y(), d.x());
@@ -58,7 +60,9 @@ ConvexMeasures convex_hull_measures(std::span<const Eigen::Vector2d> points) {
   Eigen::Vector2d best_pair = h[1] - h[0];
   double min_width = std::numeric_limits<double>::infinity();
   std::size_t j = 1;
-  auto height = [&](std::size_t i, std::size_t k) { return cross(h[(i + 1) % n] - h[i], h[k % n] - h[i]); };
+  auto height = [&](std::size_t i, std::size_t k) {
+    return cross(h[(i + 1) % n] - h[i], h[k % n] - h[i]);
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t i1 = (i + 1) % n;
     if (j == i) j = i1;

@@ -21,13 +21,15 @@ EmpiricalCdf empirical_cdf(std::span<const double> values, std::span<const doubl
       throw std::invalid_argument("empirical_cdf: value " + std::to_string(k) + " is not finite");
     if (!std::isfinite(weights[k]) || weights[k] < 0.0)
       throw std::invalid_argument("empirical_cdf: weight " + std::to_string(k) + " = " +
-                                  std::to_string(weights[k]) + "; expected a finite, non-negative mass");
+                                  std::to_string(weights[k]) +
+                                  "; expected a finite, non-negative mass");
     total += weights[k];
   }
   if (!(total > 0.0)) throw std::invalid_argument("empirical_cdf: the weights sum to zero");
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
   cdf.value.resize(n);
   cdf.number_fraction.resize(n);
   cdf.mass_fraction.resize(n);

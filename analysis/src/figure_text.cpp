@@ -3,10 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <utility>
 #include <vector>
-
-#include <opencv2/imgproc.hpp>
 
 namespace fragmpm::analysis::detail {
 
@@ -61,11 +60,11 @@ Layout layout(const RichText& text, const TextStyle& style) {
 
 std::string ascii_text(const std::string& utf8) {
   static const std::vector<std::pair<std::string, std::string>> table{
-      {"\u00b5", "u"},      {"\u03bc", "u"},     {"\u00b0", " deg"}, {"\u03c3", "sigma"},
-      {"\u03b8", "theta"},  {"\u0394", "Delta"}, {"\u2212", "-"},    {"\u2013", "-"},
-      {"\u2014", "-"},      {"\u00b2", "^2"},    {"\u00b3", "^3"},   {"\u00d7", "x"},
-      {"\u2264", "<="},     {"\u2265", ">="},    {"\u00b1", "+/-"},  {"\u2026", "..."},
-      {"\u2192", "->"},     {"\u00b7", "."}};
+      {"\u00b5", "u"},     {"\u03bc", "u"},     {"\u00b0", " deg"}, {"\u03c3", "sigma"},
+      {"\u03b8", "theta"}, {"\u0394", "Delta"}, {"\u2212", "-"},    {"\u2013", "-"},
+      {"\u2014", "-"},     {"\u00b2", "^2"},    {"\u00b3", "^3"},   {"\u00d7", "x"},
+      {"\u2264", "<="},    {"\u2265", ">="},    {"\u00b1", "+/-"},  {"\u2026", "..."},
+      {"\u2192", "->"},    {"\u00b7", "."}};
   std::string out;
   for (std::size_t i = 0; i < utf8.size();) {
     const unsigned char c = static_cast<unsigned char>(utf8[i]);
@@ -92,9 +91,13 @@ std::string ascii_text(const std::string& utf8) {
   return out;
 }
 
-RichText plain(const std::string& text) { return {{text, false}}; }
+RichText plain(const std::string& text) {
+  return {{text, false}};
+}
 
-cv::Size text_extent(const RichText& text, const TextStyle& style) { return layout(text, style).size; }
+cv::Size text_extent(const RichText& text, const TextStyle& style) {
+  return layout(text, style).size;
+}
 
 void draw_text(cv::Mat& image, const RichText& text, cv::Point2d anchor, HAlign h, VAlign v,
                const TextStyle& style, bool vertical) {
@@ -107,9 +110,14 @@ void draw_text(cv::Mat& image, const RichText& text, cv::Point2d anchor, HAlign 
                 style.thickness, cv::LINE_AA);
   // Align the nominal box; the extra rows above it (left of it once rotated) overhang the anchor.
   if (vertical) cv::rotate(mask, mask, cv::ROTATE_90_COUNTERCLOCKWISE);
-  const double w = vertical ? l.size.height : l.size.width, hgt = vertical ? l.size.width : l.size.height;
-  const double x0 = h == HAlign::left ? anchor.x : h == HAlign::centre ? anchor.x - w / 2 : anchor.x - w;
-  const double y0 = v == VAlign::top ? anchor.y : v == VAlign::centre ? anchor.y - hgt / 2 : anchor.y - hgt;
+  const double w = vertical ? l.size.height : l.size.width,
+               hgt = vertical ? l.size.width : l.size.height;
+  const double x0 = h == HAlign::left     ? anchor.x
+                    : h == HAlign::centre ? anchor.x - w / 2
+                                          : anchor.x - w;
+  const double y0 = v == VAlign::top      ? anchor.y
+                    : v == VAlign::centre ? anchor.y - hgt / 2
+                                          : anchor.y - hgt;
   const int ox = static_cast<int>(std::lround(x0)) - (vertical ? l.extra : 0);
   const int oy = static_cast<int>(std::lround(y0)) - (vertical ? 0 : l.extra);
   const cv::Vec3d colour(style.colour.b, style.colour.g, style.colour.r);

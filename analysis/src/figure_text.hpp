@@ -2,9 +2,8 @@
 // Text of the figures, drawn with OpenCV's Hershey fonts after the OpenGL geometry is read back
 // (private to analysis/). Hershey fonts hold printable ASCII only, so UTF-8 text is transliterated
 // (µ → u, ° → deg, σ → sigma, − and — → -, ² → ^2 …) before drawing.
-#include <string>
-
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "fragmpm/analysis/axis_ticks.hpp"
 #include "fragmpm/analysis/colour_map.hpp"
@@ -29,7 +28,8 @@ RichText plain(const std::string& text);
 cv::Size text_extent(const RichText& text, const TextStyle& style);
 
 /// Draws `text` so that its box sits at `anchor` with the given alignment; `vertical` turns it 90°
-/// counter-clockwise (reading upwards, as a y-axis label). The box is that of text_extent (rotated).
+/// counter-clockwise (reading upwards, as a y-axis label). The box is that of text_extent
+/// (rotated).
 void draw_text(cv::Mat& image, const RichText& text, cv::Point2d anchor, HAlign h, VAlign v,
                const TextStyle& style, bool vertical = false);
 

@@ -1,9 +1,9 @@
 #include "fragmpm/analysis/fragment_figures.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "fragmpm/analysis/figure_error.hpp"
 #include "fragmpm/analysis/si_format.hpp"
@@ -27,7 +27,8 @@ constexpr std::size_t kMarkerLimit = 30;  // draw markers on series with few poi
 
 }  // namespace
 
-PlotSpec cdf_plot_spec(std::span<const CdfCurve> curves, CdfQuantity quantity, CdfWeighting weighting) {
+PlotSpec cdf_plot_spec(std::span<const CdfCurve> curves, CdfQuantity quantity,
+                       CdfWeighting weighting) {
   const bool diameter = quantity == CdfQuantity::equivalent_diameter;
   const bool mass = weighting == CdfWeighting::mass;
   PlotSpec spec;
@@ -49,7 +50,8 @@ PlotSpec cdf_plot_spec(std::span<const CdfCurve> curves, CdfQuantity quantity, C
     }
     spec.series.push_back(std::move(s));
   }
-  if (spec.series.empty()) throw FigureError("CDF figure: no analysed frame has a resolved fragment");
+  if (spec.series.empty())
+    throw FigureError("CDF figure: no analysed frame has a resolved fragment");
   spec.x_label = diameter ? fmt::format("equivalent diameter [{}]", rescale(spec.series, true, "m"))
                           : std::string("roundness (ImageJ: minor / major axis)");
   spec.y_label = mass ? "cumulative mass fraction" : "cumulative number fraction";

@@ -1,14 +1,14 @@
 // Particle domains drawn with OpenCV and the raster cross-check of the fragment labelling.
 #include "fragmpm/analysis/fragment_raster.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <opencv2/imgproc.hpp>
 #include <set>
 #include <stdexcept>
-
-#include <fmt/format.h>
-#include <opencv2/imgproc.hpp>
 
 #include "fragmpm/analysis/particle_domain.hpp"
 
@@ -19,10 +19,12 @@ constexpr int kShift = 8;  // fillConvexPoly sub-pixel bits
 constexpr double kMaxPixels = 2e8;
 }  // namespace
 
-ParticleRaster draw_particle_domains(const mpm::Particles<2>& P, std::span<const std::size_t> subset,
-                                     double pixel_size, int pad_pixels) {
+ParticleRaster draw_particle_domains(const mpm::Particles<2>& P,
+                                     std::span<const std::size_t> subset, double pixel_size,
+                                     int pad_pixels) {
   if (!(pixel_size > 0.0) || !std::isfinite(pixel_size))
-    throw std::invalid_argument(fmt::format("raster pixel size must be positive, got {}", pixel_size));
+    throw std::invalid_argument(
+        fmt::format("raster pixel size must be positive, got {}", pixel_size));
   if (subset.empty()) throw std::invalid_argument("no particles to draw");
   pad_pixels = std::max(pad_pixels, 0);
   double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
@@ -33,13 +35,15 @@ ParticleRaster draw_particle_domains(const mpm::Particles<2>& P, std::span<const
       ymin = std::min(ymin, c(1));
       ymax = std::max(ymax, c(1));
     }
-  if (!std::isfinite(xmin + xmax + ymin + ymax)) throw std::invalid_argument("particle domains are not finite");
+  if (!std::isfinite(xmin + xmax + ymin + ymax))
+    throw std::invalid_argument("particle domains are not finite");
   const double cols = std::ceil((xmax - xmin) / pixel_size) + 2.0 * pad_pixels;
   const double rows = std::ceil((ymax - ymin) / pixel_size) + 2.0 * pad_pixels;
   if (cols * rows > kMaxPixels)
-    throw std::invalid_argument(fmt::format(
-        "a raster of {:.0f} x {:.0f} pixels at {:.4g} m per pixel is too large (limit {:.0e} pixels)", cols,
-        rows, pixel_size, kMaxPixels));
+    throw std::invalid_argument(
+        fmt::format("a raster of {:.0f} x {:.0f} pixels at {:.4g} m per pixel is too large (limit "
+                    "{:.0e} pixels)",
+                    cols, rows, pixel_size, kMaxPixels));
   ParticleRaster r;
   r.pixel_size = pixel_size;
   r.x0 = xmin - pad_pixels * pixel_size;
@@ -93,7 +97,8 @@ double default_raster_pixel_size(const mpm::Particles<2>& P, const FragmentLabel
   return 0.25 * *mid;
 }
 
-RasterLabels raster_fragments(const mpm::Particles<2>& P, const FragmentLabels& labels, double pixel_size) {
+RasterLabels raster_fragments(const mpm::Particles<2>& P, const FragmentLabels& labels,
+                              double pixel_size) {
   RasterLabels out;
   out.component.assign(labels.fragment.size(), -1);
   std::vector<std::size_t> subset;
@@ -115,8 +120,10 @@ RasterLabels raster_fragments(const mpm::Particles<2>& P, const FragmentLabels& 
 std::string LabellingComparison::summary() const {
   if (agree()) return fmt::format("raster and graph agree: {} fragments", graph_fragments);
   return fmt::format(
-      "raster: {} connected components, graph: {} fragments ({} components join several fragments, e.g. "
-      "pieces pressed together; {} fragments split in the raster; {} components hold no particle centre)",
+      "raster: {} connected components, graph: {} fragments ({} components join several fragments, "
+      "e.g. "
+      "pieces pressed together; {} fragments split in the raster; {} components hold no particle "
+      "centre)",
       raster_components, graph_fragments, merged, split, empty);
 }
 

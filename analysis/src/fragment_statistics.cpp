@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <opencv2/imgproc.hpp>
 
 #include "fragmpm/analysis/convex_hull_measures.hpp"
@@ -23,13 +22,15 @@ double median_spacing(const mpm::Particles<2>& P, std::span<const std::size_t> m
   return *mid;
 }
 
-double raster_perimeter(const mpm::Particles<2>& P, std::span<const std::size_t> members, double pixel_size,
-                        double smoothing) {
+double raster_perimeter(const mpm::Particles<2>& P, std::span<const std::size_t> members,
+                        double pixel_size, double smoothing) {
   const double sigma = smoothing / pixel_size;  // [pixels]
-  ParticleRaster r = draw_particle_domains(P, members, pixel_size, 3 + static_cast<int>(std::ceil(3.0 * sigma)));
+  ParticleRaster r =
+      draw_particle_domains(P, members, pixel_size, 3 + static_cast<int>(std::ceil(3.0 * sigma)));
   cv::Mat blurred;
   r.mask.convertTo(blurred, CV_32F, 1.0 / 255.0);
-  if (sigma > 0.0) cv::GaussianBlur(blurred, blurred, cv::Size(0, 0), sigma, sigma, cv::BORDER_CONSTANT);
+  if (sigma > 0.0)
+    cv::GaussianBlur(blurred, blurred, cv::Size(0, 0), sigma, sigma, cv::BORDER_CONSTANT);
   cv::Mat labels = cv::Mat::zeros(blurred.size(), CV_32S);
   labels.setTo(1, blurred >= 0.5f);
   // One label for the whole fragment (its raster may be in pieces if domains moved apart without
@@ -40,7 +41,8 @@ double raster_perimeter(const mpm::Particles<2>& P, std::span<const std::size_t>
 
 }  // namespace
 
-FragmentStatistics fragment_statistics(const mpm::Particles<2>& P, std::span<const std::size_t> members,
+FragmentStatistics fragment_statistics(const mpm::Particles<2>& P,
+                                       std::span<const std::size_t> members,
                                        const StatisticsOptions& options) {
   FragmentStatistics s;
   s.particles = static_cast<std::int64_t>(members.size());
@@ -65,8 +67,8 @@ FragmentStatistics fragment_statistics(const mpm::Particles<2>& P, std::span<con
   }
   const double spacing = median_spacing(P, members);
   const double pixel = spacing / options.perimeter_pixels_per_spacing;
-  const RegionShape shape =
-      region_shape(moments, raster_perimeter(P, members, pixel, options.perimeter_smoothing * spacing));
+  const RegionShape shape = region_shape(
+      moments, raster_perimeter(P, members, pixel, options.perimeter_smoothing * spacing));
   s.area = shape.area;
   s.equivalent_diameter = shape.equivalent_diameter;
   s.roundness = shape.roundness;
@@ -91,7 +93,8 @@ FragmentStatistics fragment_statistics(const mpm::Particles<2>& P, std::span<con
   return s;
 }
 
-std::vector<FragmentStatistics> fragment_statistics(const mpm::Particles<2>& P, const FragmentLabels& labels,
+std::vector<FragmentStatistics> fragment_statistics(const mpm::Particles<2>& P,
+                                                    const FragmentLabels& labels,
                                                     const StatisticsOptions& options) {
   const auto members = fragment_members(labels);
   std::vector<FragmentStatistics> out(members.size());

@@ -15,13 +15,16 @@ namespace fragmpm::analysis {
 
 void validate(const FragmentOptions& o) {
   if (!(o.d_mask > 0.0 && o.d_mask <= 1.0))
-    throw std::invalid_argument("damage mask threshold d_mask must be in (0, 1], got " + std::to_string(o.d_mask));
+    throw std::invalid_argument("damage mask threshold d_mask must be in (0, 1], got " +
+                                std::to_string(o.d_mask));
   if (!(o.reference_reach > 0.0) || !std::isfinite(o.reference_reach))
-    throw std::invalid_argument("reference neighbour reach must be a positive number of spacings, got " +
-                                std::to_string(o.reference_reach));
+    throw std::invalid_argument(
+        "reference neighbour reach must be a positive number of spacings, got " +
+        std::to_string(o.reference_reach));
   if (!(o.current_reach > 0.0) || !std::isfinite(o.current_reach))
-    throw std::invalid_argument("current neighbour reach must be a positive number of spacings, got " +
-                                std::to_string(o.current_reach));
+    throw std::invalid_argument(
+        "current neighbour reach must be a positive number of spacings, got " +
+        std::to_string(o.current_reach));
   if (o.min_particles < 1)
     throw std::invalid_argument("minimum particles per fragment must be at least 1, got " +
                                 std::to_string(o.min_particles));
@@ -36,7 +39,8 @@ FragmentLabels label_fragments(const mpm::Particles<2>& reference, const mpm::Pa
   validate(options);
   const std::size_t n = current.size();
   if (reference.size() != n)
-    throw std::invalid_argument("the reference configuration has " + std::to_string(reference.size()) +
+    throw std::invalid_argument("the reference configuration has " +
+                                std::to_string(reference.size()) +
                                 " particles and the current one " + std::to_string(n) +
                                 "; fragments need the same particles in both");
   if (current.damage.size() != n || current.volume0.size() != n || reference.volume0.size() != n)
@@ -76,8 +80,9 @@ FragmentLabels label_fragments(const mpm::Particles<2>& reference, const mpm::Pa
       ymax = std::max(ymax, reference.x[p](1));
     }
     if (std::max(xmax - xmin, ymax - ymin) / bin > 1e9)
-      throw std::invalid_argument("the reference configuration spans more than 10^9 particle spacings; "
-                                  "its positions or volumes are not those of one run");
+      throw std::invalid_argument(
+          "the reference configuration spans more than 10^9 particle spacings; "
+          "its positions or volumes are not those of one run");
     auto bin_of = [&](std::size_t p) {
       return std::pair<std::int64_t, std::int64_t>{
           static_cast<std::int64_t>(std::floor((reference.x[p](0) - xmin) / bin)),
@@ -99,7 +104,8 @@ FragmentLabels label_fragments(const mpm::Particles<2>& reference, const mpm::Pa
         for (std::int64_t dy = -1; dy <= 1; ++dy) {
           if (bx + dx < 0 || by + dy < 0) continue;
           const std::int64_t k = key(bx + dx, by + dy);
-          auto it = std::lower_bound(keyed.begin(), keyed.end(), std::pair<std::int64_t, std::size_t>{k, 0});
+          auto it = std::lower_bound(keyed.begin(), keyed.end(),
+                                     std::pair<std::int64_t, std::size_t>{k, 0});
           for (; it != keyed.end() && it->first == k; ++it) {
             const std::size_t q = it->second;
             if (q <= p || current.body[p] != current.body[q]) continue;
@@ -126,8 +132,9 @@ FragmentLabels label_fragments(const mpm::Particles<2>& reference, const mpm::Pa
   }
   std::vector<std::size_t> order(roots.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return sets.size[roots[a]] > sets.size[roots[b]]; });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return sets.size[roots[a]] > sets.size[roots[b]];
+  });
   std::vector<std::int32_t> id_of_slot(roots.size());
   labels.particles.resize(roots.size());
   labels.fine.resize(roots.size());
@@ -137,13 +144,15 @@ FragmentLabels label_fragments(const mpm::Particles<2>& reference, const mpm::Pa
     labels.particles[k] = count;
     labels.fine[k] = count < options.min_particles ? 1 : 0;
   }
-  for (const std::size_t p : active) labels.fragment[p] = id_of_slot[static_cast<std::size_t>(root_slot[sets.find(p)])];
+  for (const std::size_t p : active)
+    labels.fragment[p] = id_of_slot[static_cast<std::size_t>(root_slot[sets.find(p)])];
   return labels;
 }
 
 std::vector<std::vector<std::size_t>> fragment_members(const FragmentLabels& labels) {
   std::vector<std::vector<std::size_t>> members(labels.count());
-  for (std::size_t f = 0; f < labels.count(); ++f) members[f].reserve(static_cast<std::size_t>(labels.particles[f]));
+  for (std::size_t f = 0; f < labels.count(); ++f)
+    members[f].reserve(static_cast<std::size_t>(labels.particles[f]));
   for (std::size_t p = 0; p < labels.fragment.size(); ++p)
     if (labels.fragment[p] >= 0) members[static_cast<std::size_t>(labels.fragment[p])].push_back(p);
   return members;

@@ -1,11 +1,11 @@
 // Run-frame particle figures (see frame_figure.hpp).
 #include "fragmpm/analysis/frame_figure.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "fragmpm/analysis/figure_error.hpp"
 
@@ -13,7 +13,8 @@ namespace fragmpm::analysis {
 
 namespace {
 
-ParticleFigure geometry(const mpm::Particles<2>& p, std::optional<double> time, const std::string& title) {
+ParticleFigure geometry(const mpm::Particles<2>& p, std::optional<double> time,
+                        const std::string& title) {
   ParticleFigure f;
   const std::size_t n = p.size();
   if (p.domain.size() != n)
@@ -40,14 +41,16 @@ void name_field(ParticleFigure& f, std::string name, std::string units) {
 template <class T>
 void require_size(const std::vector<T>& v, std::size_t n, const char* what) {
   if (v.size() != n)
-    throw FigureError(fmt::format("frame figure: the frame has {} {} values for {} particles{}", v.size(), what, n,
+    throw FigureError(fmt::format("frame figure: the frame has {} {} values for {} particles{}",
+                                  v.size(), what, n,
                                   v.empty() ? " (not stored in this frame)" : ""));
 }
 
 /// Colour range of a field dominated by a few extreme particles (stress concentrations at contacts
 /// and crack tips reach 10 x the bulk value): the 1st and 99th percentiles of the finite values, so
-/// the bulk is not all one colour; the values beyond take the end colours. Returns false (range left
-/// to the default) when there are too few values for percentiles to mean anything, or they coincide.
+/// the bulk is not all one colour; the values beyond take the end colours. Returns false (range
+/// left to the default) when there are too few values for percentiles to mean anything, or they
+/// coincide.
 bool clip_to_percentiles(ParticleFigure& f) {
   std::vector<double> v;
   for (double x : f.values)
@@ -76,7 +79,8 @@ FrameField parse_frame_field(const std::string& name) {
   const auto& names = frame_field_names();
   for (std::size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return static_cast<FrameField>(i);
-  throw FigureError(fmt::format("unknown field '{}'; expected one of {}", name, fmt::join(names, ", ")));
+  throw FigureError(
+      fmt::format("unknown field '{}'; expected one of {}", name, fmt::join(names, ", ")));
 }
 
 double max_principal_stress(const Eigen::Matrix2d& s) {
@@ -85,8 +89,8 @@ double max_principal_stress(const Eigen::Matrix2d& s) {
   return mean + std::sqrt(half_diff * half_diff + sxy * sxy);
 }
 
-ParticleFigure frame_figure(const mpm::Particles<2>& p, FrameField field, std::optional<double> time,
-                            const std::string& title) {
+ParticleFigure frame_figure(const mpm::Particles<2>& p, FrameField field,
+                            std::optional<double> time, const std::string& title) {
   ParticleFigure f = geometry(p, time, title);
   const std::size_t n = p.size();
   switch (field) {
@@ -99,7 +103,8 @@ ParticleFigure frame_figure(const mpm::Particles<2>& p, FrameField field, std::o
       break;
     case FrameField::temperature:
       if (p.temperature.empty())
-        throw FigureError("frame figure: the frame has no temperature (the thermal module was off in this run)");
+        throw FigureError(
+            "frame figure: the frame has no temperature (the thermal module was off in this run)");
       require_size(p.temperature, n, "temperature");
       f.values = p.temperature;
       name_field(f, "temperature", "K");
@@ -115,7 +120,9 @@ ParticleFigure frame_figure(const mpm::Particles<2>& p, FrameField field, std::o
       require_size(p.stress, n, "stress");
       f.values.reserve(n);
       for (const auto& s : p.stress) f.values.push_back(1e-6 * max_principal_stress(s));
-      name_field(f, clip_to_percentiles(f) ? "max principal stress, 1-99 % range" : "max principal stress", "MPa");
+      name_field(
+          f, clip_to_percentiles(f) ? "max principal stress, 1-99 % range" : "max principal stress",
+          "MPa");
       break;
     case FrameField::body:
       require_size(p.body, n, "body");
@@ -136,7 +143,8 @@ std::vector<std::int64_t> resolved_fragment_ids(const FragmentLabels& labels) {
   return ids;
 }
 
-ParticleFigure fragment_figure(const mpm::Particles<2>& p, const std::vector<std::int64_t>& fragment_ids,
+ParticleFigure fragment_figure(const mpm::Particles<2>& p,
+                               const std::vector<std::int64_t>& fragment_ids,
                                std::optional<double> time, const std::string& title) {
   ParticleFigure f = geometry(p, time, title);
   require_size(fragment_ids, p.size(), "fragment id");

@@ -40,9 +40,9 @@ FragmentSummary summarize_fragments(const mpm::Particles<2>& P, const FragmentLa
   return s;
 }
 
-FrameFragments analyze_fragments(const mpm::Particles<2>& reference, const mpm::Particles<2>& current,
-                                 const FragmentOptions& options, bool raster_check,
-                                 const StatisticsOptions& statistics) {
+FrameFragments analyze_fragments(const mpm::Particles<2>& reference,
+                                 const mpm::Particles<2>& current, const FragmentOptions& options,
+                                 bool raster_check, const StatisticsOptions& statistics) {
   FrameFragments out;
   out.labels = label_fragments(reference, current, options);
   out.summary = summarize_fragments(current, out.labels);

@@ -10,7 +10,9 @@ namespace fragmpm::analysis::detail {
 
 namespace {
 
-void set_colour(Rgb c) { glColor4ub(c.r, c.g, c.b, 255); }
+void set_colour(Rgb c) {
+  glColor4ub(c.r, c.g, c.b, 255);
+}
 
 }  // namespace
 
@@ -110,6 +112,8 @@ void clip_to(int x0, int y0, int x1, int y1, int image_height) {
   glScissor(x0, image_height - y1, std::max(0, x1 - x0), std::max(0, y1 - y0));
 }
 
-void clip_off() { glDisable(GL_SCISSOR_TEST); }
+void clip_off() {
+  glDisable(GL_SCISSOR_TEST);
+}
 
 }  // namespace fragmpm::analysis::detail

@@ -18,7 +18,8 @@ void fill_rect(double x0, double y0, double x1, double y1, Rgb colour);
 /// Outline `width` pixels wide lying inside [x0, x1) × [y0, y1).
 void stroke_rect(double x0, double y0, double x1, double y1, double width, Rgb colour);
 /// Antialiased polyline; `dashed` draws it in long dashes.
-void draw_polyline(const std::vector<PixelPoint>& points, double width, Rgb colour, bool dashed = false);
+void draw_polyline(const std::vector<PixelPoint>& points, double width, Rgb colour,
+                   bool dashed = false);
 /// Antialiased round markers of diameter `size` pixels.
 void draw_markers(const std::vector<PixelPoint>& points, double size, Rgb colour);
 /// Flat-coloured triangles: xy holds 6 floats per triangle, rgb 3 bytes per triangle.

@@ -2,12 +2,11 @@
 #include "fragmpm/analysis/offscreen.hpp"
 
 #include <GL/osmesa.h>
-
-#include <string>
-
 #include <fmt/format.h>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "fragmpm/analysis/figure_error.hpp"
 
@@ -16,8 +15,8 @@ namespace fragmpm::analysis {
 OffscreenContext::OffscreenContext(int width, int height) : width_(width), height_(height) {
   constexpr int max_side = 16384;
   if (width < 1 || height < 1 || width > max_side || height > max_side)
-    throw FigureError(fmt::format("figure size {} x {} pixels: expected each side in [1, {}]", width,
-                                  height, max_side));
+    throw FigureError(fmt::format("figure size {} x {} pixels: expected each side in [1, {}]",
+                                  width, height, max_side));
   // No depth, stencil or accumulation buffers: figures are flat 2D geometry drawn in order.
   context_ = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
   if (context_ == nullptr)

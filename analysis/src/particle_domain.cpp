@@ -5,7 +5,9 @@
 namespace fragmpm::analysis {
 
 namespace {
-double domain_area(const mpm::Mat<2>& r) { return std::abs(r(0, 0) * r(1, 1) - r(1, 0) * r(0, 1)); }
+double domain_area(const mpm::Mat<2>& r) {
+  return std::abs(r(0, 0) * r(1, 1) - r(1, 0) * r(0, 1));
+}
 }  // namespace
 
 double particle_area(const mpm::Particles<2>& P, std::size_t p) {
@@ -13,7 +15,9 @@ double particle_area(const mpm::Particles<2>& P, std::size_t p) {
   return v > 0.0 ? v : domain_area(P.domain[p]);
 }
 
-double particle_spacing(const mpm::Particles<2>& P, std::size_t p) { return std::sqrt(particle_area(P, p)); }
+double particle_spacing(const mpm::Particles<2>& P, std::size_t p) {
+  return std::sqrt(particle_area(P, p));
+}
 
 std::array<mpm::Vec<2>, 4> particle_corners(const mpm::Particles<2>& P, std::size_t p) {
   mpm::Vec<2> r1 = P.domain[p].col(0);
@@ -25,7 +29,8 @@ std::array<mpm::Vec<2>, 4> particle_corners(const mpm::Particles<2>& P, std::siz
   }
   const mpm::Vec<2>& x = P.x[p];
   // Counter-clockwise when r1 × r2 > 0 (and clockwise otherwise: still a convex quadrilateral).
-  return {x - 0.5 * r1 - 0.5 * r2, x + 0.5 * r1 - 0.5 * r2, x + 0.5 * r1 + 0.5 * r2, x - 0.5 * r1 + 0.5 * r2};
+  return {x - 0.5 * r1 - 0.5 * r2, x + 0.5 * r1 - 0.5 * r2, x + 0.5 * r1 + 0.5 * r2,
+          x - 0.5 * r1 + 0.5 * r2};
 }
 
 }  // namespace fragmpm::analysis

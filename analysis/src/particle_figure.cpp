@@ -1,13 +1,13 @@
-// Particle figures (see particle_figure.hpp): OpenGL (OSMesa) fills the particle domains, the colour
-// bar or id swatches and the scale bar; OpenCV adds the text and writes the PNG.
+// Particle figures (see particle_figure.hpp): OpenGL (OSMesa) fills the particle domains, the
+// colour bar or id swatches and the scale bar; OpenCV adds the text and writes the PNG.
 #include "fragmpm/analysis/particle_figure.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
-
-#include <fmt/format.h>
 
 #include "figure_text.hpp"
 #include "fragmpm/analysis/axis_ticks.hpp"
@@ -27,10 +27,13 @@ namespace {
 constexpr std::size_t max_legend_rows = 15;
 
 std::string figure_name(const ParticleFigure& f) {
-  return f.title.empty() ? std::string("particle figure") : fmt::format("particle figure '{}'", f.title);
+  return f.title.empty() ? std::string("particle figure")
+                         : fmt::format("particle figure '{}'", f.title);
 }
 
-bool dimensionless(const std::string& units) { return units.empty() || units == "1" || units == "-"; }
+bool dimensionless(const std::string& units) {
+  return units.empty() || units == "1" || units == "-";
+}
 
 std::string bar_label(const ParticleFigure& f) {
   return dimensionless(f.units) ? f.field_name : fmt::format("{} [{}]", f.field_name, f.units);
@@ -41,7 +44,8 @@ std::vector<std::int64_t> legend_ids(const std::vector<std::int64_t>& ids) {
   std::set<std::int64_t> distinct;
   for (std::int64_t id : ids) distinct.insert(id < 0 ? -1 : id);
   std::vector<std::int64_t> out(distinct.begin(), distinct.end());
-  if (!out.empty() && out.front() < 0) std::rotate(out.begin(), out.begin() + 1, out.end());  // "none" last
+  if (!out.empty() && out.front() < 0)
+    std::rotate(out.begin(), out.begin() + 1, out.end());  // "none" last
   return out;
 }
 
@@ -63,25 +67,28 @@ struct Layout {
 Layout layout(const ParticleFigure& fig) {
   const std::string name = figure_name(fig);
   if (fig.width < 200 || fig.height < 200 || fig.width > 16384 || fig.height > 16384)
-    throw FigureError(fmt::format("{}: size {} x {} pixels; expected each side in [200, 16384]", name,
-                                  fig.width, fig.height));
+    throw FigureError(fmt::format("{}: size {} x {} pixels; expected each side in [200, 16384]",
+                                  name, fig.width, fig.height));
   const std::size_t n = fig.x.size();
   if (n == 0) throw FigureError(name + ": no particles");
   if (fig.r1.size() != n || fig.r2.size() != n)
-    throw FigureError(fmt::format("{}: {} centres but {} r1 and {} r2 vectors", name, n, fig.r1.size(),
-                                  fig.r2.size()));
+    throw FigureError(fmt::format("{}: {} centres but {} r1 and {} r2 vectors", name, n,
+                                  fig.r1.size(), fig.r2.size()));
   const bool categorical = !fig.ids.empty();
   if (categorical == !fig.values.empty())
-    throw FigureError(name + ": give either a value per particle or an id per particle (exactly one of the two)");
+    throw FigureError(
+        name + ": give either a value per particle or an id per particle (exactly one of the two)");
   const std::size_t colours = categorical ? fig.ids.size() : fig.values.size();
   if (colours != n)
-    throw FigureError(fmt::format("{}: {} particles but {} {}", name, n, colours, categorical ? "ids" : "values"));
+    throw FigureError(fmt::format("{}: {} particles but {} {}", name, n, colours,
+                                  categorical ? "ids" : "values"));
 
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
   bool any_area = false;
   for (std::size_t i = 0; i < n; ++i) {
     if (!fig.x[i].allFinite() || !fig.r1[i].allFinite() || !fig.r2[i].allFinite())
-      throw FigureError(fmt::format("{}: particle {}: position or domain vectors not finite", name, i));
+      throw FigureError(
+          fmt::format("{}: particle {}: position or domain vectors not finite", name, i));
     const double area = std::abs(fig.r1[i].x() * fig.r2[i].y() - fig.r1[i].y() * fig.r2[i].x());
     any_area = any_area || area > 0.0;
     for (int a = -1; a <= 1; a += 2)
@@ -92,12 +99,14 @@ Layout layout(const ParticleFigure& fig) {
       }
   }
   if (!any_area)
-    throw FigureError(name + ": every particle domain has zero area (are the r1, r2 domain vectors missing?)");
+    throw FigureError(
+        name + ": every particle domain has zero area (are the r1, r2 domain vectors missing?)");
 
   const FigureStyle st = figure_style(fig.width, fig.height);
   Layout l;
   ParticleFrame& pf = l.frame;
-  const double title_h = fig.title.empty() ? 0 : text_extent(plain(fig.title), st.title_font).height;
+  const double title_h =
+      fig.title.empty() ? 0 : text_extent(plain(fig.title), st.title_font).height;
   const double row_h = text_extent(plain("0 mm"), st.label_font).height;
   const double bar_thickness = std::max(3.0, 7.0 * st.scale);
   const double top = st.pad + (title_h > 0 ? title_h + st.pad : 0);
@@ -113,12 +122,14 @@ Layout layout(const ParticleFigure& fig) {
     if (fig.vmin) lo = *fig.vmin;
     if (fig.vmax) hi = *fig.vmax;
     if (!std::isfinite(lo) || !std::isfinite(hi) || hi < lo)
-      throw FigureError(fmt::format("{}: colour range [{}, {}] is empty or not finite", name, lo, hi));
+      throw FigureError(
+          fmt::format("{}: colour range [{}, {}] is empty or not finite", name, lo, hi));
     l.bar_ticks = linear_ticks(lo, hi, 0.0);
     pf.vmin = l.bar_ticks.lo;
     pf.vmax = l.bar_ticks.hi;
     double tick_w = 0;
-    for (const RichText& t : l.bar_ticks.labels) tick_w = std::max<double>(tick_w, text_extent(t, st.tick_font).width);
+    for (const RichText& t : l.bar_ticks.labels)
+      tick_w = std::max<double>(tick_w, text_extent(t, st.tick_font).width);
     const double label_h = text_extent(plain(bar_label(fig)), st.label_font).height;
     const double bar_w = std::max(12.0, 30.0 * st.scale);
     strip = 2 * st.pad + bar_w + st.tick_length + 0.5 * st.pad + tick_w + st.pad + label_h + st.pad;
@@ -131,12 +142,14 @@ Layout layout(const ParticleFigure& fig) {
     const std::size_t named = ids.size() - (has_none ? 1 : 0);
     l.legend = ids;
     if (ids.size() > max_legend_rows) {
-      l.legend.assign(ids.begin(), ids.begin() + static_cast<long>(max_legend_rows - 1 - (has_none ? 1 : 0)));
+      l.legend.assign(ids.begin(),
+                      ids.begin() + static_cast<long>(max_legend_rows - 1 - (has_none ? 1 : 0)));
       if (has_none) l.legend.push_back(-1);
       l.overflow_text = fmt::format("... {} {}s in all", named, fig.id_name);
     }
     double text_w = 0;
-    for (std::int64_t id : l.legend) text_w = std::max<double>(text_w, text_extent(plain(id_text(fig, id)), st.tick_font).width);
+    for (std::int64_t id : l.legend)
+      text_w = std::max<double>(text_w, text_extent(plain(id_text(fig, id)), st.tick_font).width);
     if (!l.overflow_text.empty())
       text_w = std::max<double>(text_w, text_extent(plain(l.overflow_text), st.tick_font).width);
     l.legend_swatch = std::max(8.0, 22.0 * st.scale);
@@ -148,8 +161,10 @@ Layout layout(const ParticleFigure& fig) {
   const double area_left = st.pad, area_right = fig.width - strip;
   const double area_top = top, area_bottom = fig.height - bottom_strip;
   if (area_right - area_left < 50 || area_bottom - area_top < 50)
-    throw FigureError(fmt::format("{}: {} x {} pixels leave no room for the particles", name, fig.width, fig.height));
-  pf.scale = std::min((area_right - area_left) / (x_hi - x_lo), (area_bottom - area_top) / (y_hi - y_lo));
+    throw FigureError(fmt::format("{}: {} x {} pixels leave no room for the particles", name,
+                                  fig.width, fig.height));
+  pf.scale =
+      std::min((area_right - area_left) / (x_hi - x_lo), (area_bottom - area_top) / (y_hi - y_lo));
   pf.x_min = x_lo;
   pf.y_min = y_lo;
   // Centre the particles in the free area; the scale-bar row follows right under them.
@@ -161,7 +176,8 @@ Layout layout(const ParticleFigure& fig) {
   const double mid = pf.bottom - 0.5 * drawn_h;
 
   if (!categorical) {
-    const double bar_h = std::min(area_bottom - area_top, std::max(drawn_h, 0.6 * (area_bottom - area_top)));
+    const double bar_h =
+        std::min(area_bottom - area_top, std::max(drawn_h, 0.6 * (area_bottom - area_top)));
     pf.bar_top = static_cast<int>(std::lround(std::max(area_top, mid - 0.5 * bar_h)));
     pf.bar_bottom = static_cast<int>(std::lround(pf.bar_top + bar_h));
   } else {
@@ -179,7 +195,9 @@ Eigen::Vector2d ParticleFrame::to_pixel(const Eigen::Vector2d& p) const {
   return {left + scale * (p.x() - x_min), bottom - scale * (p.y() - y_min)};
 }
 
-ParticleFrame particle_frame(const ParticleFigure& figure) { return layout(figure).frame; }
+ParticleFrame particle_frame(const ParticleFigure& figure) {
+  return layout(figure).frame;
+}
 
 cv::Mat render_particle_figure(const ParticleFigure& fig) {
   const Layout l = layout(fig);
@@ -200,9 +218,10 @@ cv::Mat render_particle_figure(const ParticleFigure& fig) {
     const Eigen::Vector2d h1 = 0.5 * fig.r1[i], h2 = 0.5 * fig.r2[i];
     const Eigen::Vector2d c[4] = {pf.to_pixel(fig.x[i] - h1 - h2), pf.to_pixel(fig.x[i] + h1 - h2),
                                   pf.to_pixel(fig.x[i] + h1 + h2), pf.to_pixel(fig.x[i] - h1 + h2)};
-    const Rgb colour = categorical ? categorical_colour(fig.ids[i])
-                                   : viridis(std::isfinite(fig.values[i]) ? (fig.values[i] - pf.vmin) / range
-                                                                          : std::nan(""));
+    const Rgb colour =
+        categorical ? categorical_colour(fig.ids[i])
+                    : viridis(std::isfinite(fig.values[i]) ? (fig.values[i] - pf.vmin) / range
+                                                           : std::nan(""));
     for (int t : {0, 2}) {  // triangles (c0, c1, c2) and (c2, c3, c0)
       for (int k : {t, t + 1, (t + 2) % 4}) {
         xy.push_back(static_cast<float>(c[k].x()));
@@ -222,15 +241,19 @@ cv::Mat render_particle_figure(const ParticleFigure& fig) {
     }
     stroke_rect(pf.bar_left - 1, pf.bar_top - 1, pf.bar_right + 1, pf.bar_bottom + 1, 1, black);
     for (double v : l.bar_ticks.major) {
-      const double y = std::floor(pf.bar_bottom - (v - pf.vmin) / range * (pf.bar_bottom - pf.bar_top));
-      fill_rect(pf.bar_right + 1, std::min<double>(y, pf.bar_bottom - aw), pf.bar_right + 1 + st.tick_length,
-                std::min<double>(y, pf.bar_bottom - aw) + aw, black);
+      const double y =
+          std::floor(pf.bar_bottom - (v - pf.vmin) / range * (pf.bar_bottom - pf.bar_top));
+      fill_rect(pf.bar_right + 1, std::min<double>(y, pf.bar_bottom - aw),
+                pf.bar_right + 1 + st.tick_length, std::min<double>(y, pf.bar_bottom - aw) + aw,
+                black);
     }
   } else {
     for (std::size_t r = 0; r < l.legend.size(); ++r) {
       const double y = l.legend_top + r * l.legend_row + 0.5 * (l.legend_row - l.legend_swatch);
-      fill_rect(l.legend_left, y, l.legend_left + l.legend_swatch, y + l.legend_swatch, categorical_colour(l.legend[r]));
-      stroke_rect(l.legend_left, y, l.legend_left + l.legend_swatch, y + l.legend_swatch, 1, Rgb{90, 90, 90});
+      fill_rect(l.legend_left, y, l.legend_left + l.legend_swatch, y + l.legend_swatch,
+                categorical_colour(l.legend[r]));
+      stroke_rect(l.legend_left, y, l.legend_left + l.legend_swatch, y + l.legend_swatch, 1,
+                  Rgb{90, 90, 90});
     }
   }
   // Scale bar under the lower-left corner of the particles.
@@ -241,37 +264,41 @@ cv::Mat render_particle_figure(const ParticleFigure& fig) {
 
   // Text.
   if (!fig.title.empty())
-    draw_text(image, plain(fig.title), {l.title_centre, st.pad}, HAlign::centre, VAlign::top, st.title_font);
+    draw_text(image, plain(fig.title), {l.title_centre, st.pad}, HAlign::centre, VAlign::top,
+              st.title_font);
   const double text_y = l.bottom_text_y + bar_thickness + 0.5 * st.pad;
-  draw_text(image, plain(format_si(pf.scale_bar_length, "m")), {sb_x0 + 0.5 * sb_len, text_y}, HAlign::centre,
-            VAlign::top, st.label_font);
+  draw_text(image, plain(format_si(pf.scale_bar_length, "m")), {sb_x0 + 0.5 * sb_len, text_y},
+            HAlign::centre, VAlign::top, st.label_font);
   if (fig.time)
-    draw_text(image, plain("t = " + format_si(*fig.time, "s", 4)), {l.drawn_right, text_y}, HAlign::right,
-              VAlign::top, st.label_font);
+    draw_text(image, plain("t = " + format_si(*fig.time, "s", 4)), {l.drawn_right, text_y},
+              HAlign::right, VAlign::top, st.label_font);
   if (!categorical) {
     double tick_w = 0;
     for (std::size_t k = 0; k < l.bar_ticks.major.size(); ++k) {
-      const double y = pf.bar_bottom - (l.bar_ticks.major[k] - pf.vmin) / range * (pf.bar_bottom - pf.bar_top);
-      draw_text(image, l.bar_ticks.labels[k], {pf.bar_right + 1 + st.tick_length + 0.5 * st.pad, y}, HAlign::left,
-                VAlign::centre, st.tick_font);
+      const double y =
+          pf.bar_bottom - (l.bar_ticks.major[k] - pf.vmin) / range * (pf.bar_bottom - pf.bar_top);
+      draw_text(image, l.bar_ticks.labels[k], {pf.bar_right + 1 + st.tick_length + 0.5 * st.pad, y},
+                HAlign::left, VAlign::centre, st.tick_font);
       tick_w = std::max<double>(tick_w, text_extent(l.bar_ticks.labels[k], st.tick_font).width);
     }
     if (!l.bar_ticks.multiplier.empty())
-      draw_text(image, l.bar_ticks.multiplier, {static_cast<double>(pf.bar_left), pf.bar_top - 0.5 * st.pad},
-                HAlign::left, VAlign::bottom, st.tick_font);
+      draw_text(image, l.bar_ticks.multiplier,
+                {static_cast<double>(pf.bar_left), pf.bar_top - 0.5 * st.pad}, HAlign::left,
+                VAlign::bottom, st.tick_font);
     const double label_x = pf.bar_right + 1 + st.tick_length + 0.5 * st.pad + tick_w + st.pad;
-    draw_text(image, plain(bar_label(fig)), {label_x, 0.5 * (pf.bar_top + pf.bar_bottom)}, HAlign::left,
-              VAlign::centre, st.label_font, true);
+    draw_text(image, plain(bar_label(fig)), {label_x, 0.5 * (pf.bar_top + pf.bar_bottom)},
+              HAlign::left, VAlign::centre, st.label_font, true);
   } else {
     for (std::size_t r = 0; r < l.legend.size(); ++r) {
       const double cy = l.legend_top + (r + 0.5) * l.legend_row;
-      draw_text(image, plain(id_text(fig, l.legend[r])), {l.legend_left + l.legend_swatch + 0.7 * st.pad, cy},
-                HAlign::left, VAlign::centre, st.tick_font);
+      draw_text(image, plain(id_text(fig, l.legend[r])),
+                {l.legend_left + l.legend_swatch + 0.7 * st.pad, cy}, HAlign::left, VAlign::centre,
+                st.tick_font);
     }
     if (!l.overflow_text.empty())
       draw_text(image, plain(l.overflow_text),
-                {l.legend_left, l.legend_top + (l.legend.size() + 0.5) * l.legend_row}, HAlign::left,
-                VAlign::centre, st.tick_font);
+                {l.legend_left, l.legend_top + (l.legend.size() + 0.5) * l.legend_row},
+                HAlign::left, VAlign::centre, st.tick_font);
   }
   return image;
 }
@@ -282,7 +309,8 @@ void write_particle_figure(const ParticleFigure& figure, const std::string& png_
 
 double scale_bar_length(double max_length) {
   if (!(max_length > 0.0) || !std::isfinite(max_length))
-    throw FigureError(fmt::format("scale bar: the longest allowed length {} m is not positive", max_length));
+    throw FigureError(
+        fmt::format("scale bar: the longest allowed length {} m is not positive", max_length));
   const double magnitude = std::pow(10.0, std::floor(std::log10(max_length)));
   for (double m : {5.0, 2.0, 1.0})
     if (m * magnitude <= max_length * (1 + 1e-12)) return m * magnitude;

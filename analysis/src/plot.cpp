@@ -2,11 +2,11 @@
 // draws the text after read-back and writes the PNG.
 #include "fragmpm/analysis/plot.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <fmt/format.h>
 
 #include "figure_text.hpp"
 #include "fragmpm/analysis/colour_map.hpp"
@@ -30,7 +30,8 @@ std::string plot_name(const PlotSpec& spec) {
 }
 
 std::string series_name(const LineSeries& s, std::size_t i) {
-  return s.label.empty() ? fmt::format("series {}", i + 1) : fmt::format("series {} '{}'", i + 1, s.label);
+  return s.label.empty() ? fmt::format("series {}", i + 1)
+                         : fmt::format("series {} '{}'", i + 1, s.label);
 }
 
 void validate(const PlotSpec& spec) {
@@ -43,7 +44,8 @@ void validate(const PlotSpec& spec) {
     if (s.x.size() != s.y.size())
       throw FigureError(fmt::format("{}, {}: {} x values but {} y values", plot_name(spec),
                                     series_name(s, i), s.x.size(), s.y.size()));
-    if (s.x.empty()) throw FigureError(fmt::format("{}, {}: no points", plot_name(spec), series_name(s, i)));
+    if (s.x.empty())
+      throw FigureError(fmt::format("{}, {}: no points", plot_name(spec), series_name(s, i)));
     for (std::size_t k = 0; k < s.x.size(); ++k) {
       for (int axis = 0; axis < 2; ++axis) {
         const double v = axis == 0 ? s.x[k] : s.y[k];
@@ -52,16 +54,18 @@ void validate(const PlotSpec& spec) {
           throw FigureError(fmt::format("{}, {}, point {}: {} = {} is not finite", plot_name(spec),
                                         series_name(s, i), k + 1, name, v));
         if ((axis == 0 ? spec.log_x : spec.log_y) && v <= 0.0)
-          throw FigureError(fmt::format("{}, {}, point {}: {} = {} is not positive; the log {} axis "
-                                        "needs positive values",
-                                        plot_name(spec), series_name(s, i), k + 1, name, v, name));
+          throw FigureError(
+              fmt::format("{}, {}, point {}: {} = {} is not positive; the log {} axis "
+                          "needs positive values",
+                          plot_name(spec), series_name(s, i), k + 1, name, v, name));
       }
     }
   }
 }
 
 double axis_fraction(double v, double lo, double hi, bool log) {
-  return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo)) : (v - lo) / (hi - lo);
+  return log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo))
+             : (v - lo) / (hi - lo);
 }
 
 struct LegendBox {
@@ -92,7 +96,8 @@ Legend legend_size(const PlotSpec& spec, const FigureStyle& st) {
 }
 
 /// The corner of the plot area where the legend covers the fewest sampled points of the lines.
-LegendBox place_legend(const PlotSpec& spec, const PlotFrame& f, const Legend& l, const FigureStyle& st) {
+LegendBox place_legend(const PlotSpec& spec, const PlotFrame& f, const Legend& l,
+                       const FigureStyle& st) {
   const double inset = st.pad;
   std::vector<LegendBox> candidates;
   for (int corner = 0; corner < 4; ++corner) {
@@ -113,7 +118,8 @@ LegendBox place_legend(const PlotSpec& spec, const PlotFrame& f, const Legend& l
         const double px = samples > 1 ? px0 + t * (f.to_px(s.x[k + 1]) - px0) : px0;
         const double py = samples > 1 ? py0 + t * (f.to_py(s.y[k + 1]) - py0) : py0;
         for (std::size_t c = 0; c < candidates.size(); ++c)
-          if (px >= candidates[c].x0 && px <= candidates[c].x1 && py >= candidates[c].y0 && py <= candidates[c].y1)
+          if (px >= candidates[c].x0 && px <= candidates[c].x1 && py >= candidates[c].y0 &&
+              py <= candidates[c].y1)
             ++covered[c];
       }
     }
@@ -151,23 +157,33 @@ PlotFrame plot_frame(const PlotSpec& spec) {
   f.y = spec.log_y ? log_ticks(y_lo, y_hi) : linear_ticks(y_lo, y_hi);
 
   double y_tick_w = 0, x_tick_h = 0, last_x_tick_w = 0;
-  for (const RichText& t : f.y.labels) y_tick_w = std::max<double>(y_tick_w, text_extent(t, st.tick_font).width);
-  for (const RichText& t : f.x.labels) x_tick_h = std::max<double>(x_tick_h, text_extent(t, st.tick_font).height);
+  for (const RichText& t : f.y.labels)
+    y_tick_w = std::max<double>(y_tick_w, text_extent(t, st.tick_font).width);
+  for (const RichText& t : f.x.labels)
+    x_tick_h = std::max<double>(x_tick_h, text_extent(t, st.tick_font).height);
   if (!f.x.labels.empty()) last_x_tick_w = text_extent(f.x.labels.back(), st.tick_font).width;
-  const double y_label_h = spec.y_label.empty() ? 0 : text_extent(plain(spec.y_label), st.label_font).height;
-  const double x_label_h = spec.x_label.empty() ? 0 : text_extent(plain(spec.x_label), st.label_font).height;
-  const double title_h = spec.title.empty() ? 0 : text_extent(plain(spec.title), st.title_font).height;
-  const double y_mult_h = f.y.multiplier.empty() ? 0 : text_extent(f.y.multiplier, st.tick_font).height;
+  const double y_label_h =
+      spec.y_label.empty() ? 0 : text_extent(plain(spec.y_label), st.label_font).height;
+  const double x_label_h =
+      spec.x_label.empty() ? 0 : text_extent(plain(spec.x_label), st.label_font).height;
+  const double title_h =
+      spec.title.empty() ? 0 : text_extent(plain(spec.title), st.title_font).height;
+  const double y_mult_h =
+      f.y.multiplier.empty() ? 0 : text_extent(f.y.multiplier, st.tick_font).height;
   const double gap = 0.5 * st.pad;
 
-  f.left = static_cast<int>(std::lround(st.pad + y_label_h + st.pad + y_tick_w + gap + st.tick_length + st.axis_width));
-  f.right = spec.width - static_cast<int>(std::lround(2 * st.pad + std::max(0.0, 0.5 * last_x_tick_w - st.pad)));
-  f.top = static_cast<int>(std::lround(st.pad + title_h + st.pad + std::max(st.pad, y_mult_h + gap)));
-  f.bottom = spec.height - static_cast<int>(std::lround(st.axis_width + st.tick_length + gap + x_tick_h + st.pad +
-                                                        x_label_h + st.pad));
+  f.left = static_cast<int>(
+      std::lround(st.pad + y_label_h + st.pad + y_tick_w + gap + st.tick_length + st.axis_width));
+  f.right = spec.width -
+            static_cast<int>(std::lround(2 * st.pad + std::max(0.0, 0.5 * last_x_tick_w - st.pad)));
+  f.top =
+      static_cast<int>(std::lround(st.pad + title_h + st.pad + std::max(st.pad, y_mult_h + gap)));
+  f.bottom = spec.height - static_cast<int>(std::lround(st.axis_width + st.tick_length + gap +
+                                                        x_tick_h + st.pad + x_label_h + st.pad));
   if (f.right - f.left < 50 || f.bottom - f.top < 50)
-    throw FigureError(fmt::format("{}: {} x {} pixels leave no room for the plot area after the labels",
-                                  plot_name(spec), spec.width, spec.height));
+    throw FigureError(
+        fmt::format("{}: {} x {} pixels leave no room for the plot area after the labels",
+                    plot_name(spec), spec.width, spec.height));
   return f;
 }
 
@@ -196,7 +212,8 @@ cv::Mat render_line_plot(const PlotSpec& spec) {
     const LineSeries& ser = spec.series[i];
     std::vector<PixelPoint> pts;
     pts.reserve(ser.x.size());
-    for (std::size_t k = 0; k < ser.x.size(); ++k) pts.push_back({f.to_px(ser.x[k]), f.to_py(ser.y[k])});
+    for (std::size_t k = 0; k < ser.x.size(); ++k)
+      pts.push_back({f.to_px(ser.x[k]), f.to_py(ser.y[k])});
     const Rgb c = series_colour(i);
     const bool dashed = i >= 10;  // colours repeat after ten series; dashes keep them apart
     draw_polyline(pts, line_width, c, dashed);
@@ -232,7 +249,8 @@ cv::Mat render_line_plot(const PlotSpec& spec) {
       const double x0 = box.x0 + st.pad;
       std::vector<PixelPoint> pts{{x0, cy}, {x0 + box.swatch, cy}};
       draw_polyline(pts, line_width, series_colour(i), i >= 10);
-      if (spec.series[i].markers) draw_markers({{x0 + 0.5 * box.swatch, cy}}, std::max(4.0, 9.0 * s), series_colour(i));
+      if (spec.series[i].markers)
+        draw_markers({{x0 + 0.5 * box.swatch, cy}}, std::max(4.0, 9.0 * s), series_colour(i));
     }
   }
   cv::Mat image = gl.read_bgr();
@@ -240,32 +258,34 @@ cv::Mat render_line_plot(const PlotSpec& spec) {
   // Text.
   const double gap = 0.5 * st.pad;
   for (std::size_t k = 0; k < f.x.major.size(); ++k)
-    draw_text(image, f.x.labels[k], {f.to_px(f.x.major[k]), f.bottom + aw + tl + gap}, HAlign::centre,
-              VAlign::top, st.tick_font);
+    draw_text(image, f.x.labels[k], {f.to_px(f.x.major[k]), f.bottom + aw + tl + gap},
+              HAlign::centre, VAlign::top, st.tick_font);
   for (std::size_t k = 0; k < f.y.major.size(); ++k)
     draw_text(image, f.y.labels[k], {f.left - aw - tl - gap, f.to_py(f.y.major[k])}, HAlign::right,
               VAlign::centre, st.tick_font);
-  const double x_tick_h = f.x.labels.empty() ? 0 : text_extent(f.x.labels.front(), st.tick_font).height;
+  const double x_tick_h =
+      f.x.labels.empty() ? 0 : text_extent(f.x.labels.front(), st.tick_font).height;
   const double x_label_y = f.bottom + aw + tl + gap + x_tick_h + st.pad;
   if (!spec.x_label.empty())
-    draw_text(image, plain(spec.x_label), {0.5 * (f.left + f.right), x_label_y}, HAlign::centre, VAlign::top,
-              st.label_font);
+    draw_text(image, plain(spec.x_label), {0.5 * (f.left + f.right), x_label_y}, HAlign::centre,
+              VAlign::top, st.label_font);
   if (!f.x.multiplier.empty())
-    draw_text(image, f.x.multiplier, {static_cast<double>(f.right), x_label_y}, HAlign::right, VAlign::top,
-              st.tick_font);
+    draw_text(image, f.x.multiplier, {static_cast<double>(f.right), x_label_y}, HAlign::right,
+              VAlign::top, st.tick_font);
   if (!spec.y_label.empty())
-    draw_text(image, plain(spec.y_label), {st.pad, 0.5 * (f.top + f.bottom)}, HAlign::left, VAlign::centre,
-              st.label_font, true);
+    draw_text(image, plain(spec.y_label), {st.pad, 0.5 * (f.top + f.bottom)}, HAlign::left,
+              VAlign::centre, st.label_font, true);
   if (!f.y.multiplier.empty())
-    draw_text(image, f.y.multiplier, {static_cast<double>(f.left - aw), f.top - aw - gap}, HAlign::left,
-              VAlign::bottom, st.tick_font);
+    draw_text(image, f.y.multiplier, {static_cast<double>(f.left - aw), f.top - aw - gap},
+              HAlign::left, VAlign::bottom, st.tick_font);
   if (!spec.title.empty())
-    draw_text(image, plain(spec.title), {0.5 * (f.left + f.right), st.pad}, HAlign::centre, VAlign::top,
-              st.title_font);
+    draw_text(image, plain(spec.title), {0.5 * (f.left + f.right), st.pad}, HAlign::centre,
+              VAlign::top, st.title_font);
   for (std::size_t r = 0; r < legend.entries.size(); ++r) {
     const double cy = box.y0 + 0.6 * st.pad + (r + 0.5) * box.row_height;
     draw_text(image, plain(spec.series[legend.entries[r]].label),
-              {box.x0 + st.pad + box.swatch + 0.7 * st.pad, cy}, HAlign::left, VAlign::centre, st.tick_font);
+              {box.x0 + st.pad + box.swatch + 0.7 * st.pad, cy}, HAlign::left, VAlign::centre,
+              st.tick_font);
   }
   return image;
 }

@@ -144,8 +144,8 @@ std::vector<LabelRegion> label_region_shapes(const cv::Mat& labels, double pixel
       }
       return static_cast<std::size_t>(s);
     }
-    return static_cast<std::size_t>(
-        std::lower_bound(slot_label.begin(), slot_label.end(), l) - slot_label.begin());
+    return static_cast<std::size_t>(std::lower_bound(slot_label.begin(), slot_label.end(), l) -
+                                    slot_label.begin());
   };
   std::vector<Acc> acc(dense ? 0 : slot_label.size());
   auto at = [&](int r, int c) -> std::int32_t {

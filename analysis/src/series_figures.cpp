@@ -1,11 +1,11 @@
 // Series plots of a run file (see series_figures.hpp).
 #include "fragmpm/analysis/series_figures.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
-
-#include <fmt/format.h>
 
 #include "fragmpm/analysis/figure_error.hpp"
 #include "fragmpm/analysis/si_format.hpp"
@@ -77,7 +77,8 @@ std::optional<WindowMeans> window_means(const mpm::RunSeries& run, std::size_t r
   m.weight = dt;
   for (std::size_t i = 0; i < rows; ++i) {
     const double u = (time[i] - 0.5 * dt[i] - t0) / span;  // the middle of the step
-    m.window.push_back(std::min(plotted_windows - 1, static_cast<std::size_t>(std::max(0.0, u) * plotted_windows)));
+    m.window.push_back(std::min(plotted_windows - 1,
+                                static_cast<std::size_t>(std::max(0.0, u) * plotted_windows)));
   }
   return m;
 }
@@ -87,20 +88,24 @@ std::optional<WindowMeans> window_means(const mpm::RunSeries& run, std::size_t r
 PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
   const std::string& run_path = run.source;
   const std::vector<double>& time = run.column("time");
-  if (time.empty()) throw FigureError(run_path + ": /series has no rows yet (no step was recorded)");
+  if (time.empty())
+    throw FigureError(run_path + ": /series has no rows yet (no step was recorded)");
   PlotSpec spec;
   spec.title = "Energy balance";
-  const std::pair<const char*, const char*> columns[] = {
-      {"kinetic", "kinetic"},          {"strain", "strain"},       {"dissipated", "dissipated (damage)"},
-      {"friction_work", "friction work"}, {"wall_work", "wall work"}, {"balance_error", "balance error"}};
+  const std::pair<const char*, const char*> columns[] = {{"kinetic", "kinetic"},
+                                                         {"strain", "strain"},
+                                                         {"dissipated", "dissipated (damage)"},
+                                                         {"friction_work", "friction work"},
+                                                         {"wall_work", "wall work"},
+                                                         {"balance_error", "balance error"}};
   for (const auto& [name, label] : columns) {
     LineSeries s;
     s.label = label;
     s.x = time;
     s.y = run.column(name);
     if (s.y.size() != time.size())
-      throw FigureError(fmt::format("{}: /series/{} has {} rows but /series/time has {}", run_path, name,
-                                    s.y.size(), time.size()));
+      throw FigureError(fmt::format("{}: /series/{} has {} rows but /series/time has {}", run_path,
+                                    name, s.y.size(), time.size()));
     spec.series.push_back(std::move(s));
   }
   spec.x_label = fmt::format("time [{}]", rescale(spec.series, true, "s"));
@@ -108,25 +113,29 @@ PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
   return spec;
 }
 
-PlotSpec force_displacement_spec(const mpm::RunSeries& run, const std::vector<std::string>& wall_names) {
+PlotSpec force_displacement_spec(const mpm::RunSeries& run,
+                                 const std::vector<std::string>& wall_names) {
   const std::string& run_path = run.source;
-  if (wall_names.empty()) throw FigureError(run_path + ": the run has no walls, so no force-displacement curve");
+  if (wall_names.empty())
+    throw FigureError(run_path + ": the run has no walls, so no force-displacement curve");
   std::vector<std::vector<double>> force, travel;
   for (const std::string& w : wall_names) {
     force.push_back(row_norms(run.column(mpm::RunSeries::wall_force(w))));
     travel.push_back(row_norms(run.column(mpm::RunSeries::wall_displacement(w))));
     if (force.back().size() != travel.back().size())
-      throw FigureError(fmt::format("{}: wall '{}' has {} force rows but {} displacement rows", run_path, w,
-                                    force.back().size(), travel.back().size()));
+      throw FigureError(fmt::format("{}: wall '{}' has {} force rows but {} displacement rows",
+                                    run_path, w, force.back().size(), travel.back().size()));
   }
-  if (force.front().empty()) throw FigureError(run_path + ": /series has no rows yet (no step was recorded)");
+  if (force.front().empty())
+    throw FigureError(run_path + ": /series has no rows yet (no step was recorded)");
   std::string averaged;
   if (const std::optional<WindowMeans> means = window_means(run, force.front().size())) {
     for (auto& f : force) f = (*means)(f);
     for (auto& u : travel) u = (*means)(u);
     const std::vector<double>& time = run.column("time");
-    averaged = fmt::format(" (means over {} windows)",
-                           format_si((time.back() - time.front()) / static_cast<double>(plotted_windows), "s", 2));
+    averaged = fmt::format(
+        " (means over {} windows)",
+        format_si((time.back() - time.front()) / static_cast<double>(plotted_windows), "s", 2));
   }
   std::size_t mover = 0;
   double farthest = 0.0;
@@ -136,15 +145,15 @@ PlotSpec force_displacement_spec(const mpm::RunSeries& run, const std::vector<st
   }
   PlotSpec spec;
   if (farthest == 0.0) {
-    // No wall moves (an impact on a fixed wall): a force-displacement curve would be a vertical line,
-    // so the reactions are shown against time instead.
+    // No wall moves (an impact on a fixed wall): a force-displacement curve would be a vertical
+    // line, so the reactions are shown against time instead.
     std::vector<double> time = run.column("time");
     if (!averaged.empty()) time = window_means(run, time.size()).value()(time);
     spec.title = "Wall reaction forces (no wall moves)" + averaged;
     for (std::size_t i = 0; i < wall_names.size(); ++i) {
       if (force[i].size() != time.size())
-        throw FigureError(fmt::format("{}: wall '{}' has {} force rows but /series/time has {}", run_path,
-                                      wall_names[i], force[i].size(), time.size()));
+        throw FigureError(fmt::format("{}: wall '{}' has {} force rows but /series/time has {}",
+                                      run_path, wall_names[i], force[i].size(), time.size()));
       spec.series.push_back(LineSeries{wall_names[i], time, force[i], false});
     }
     spec.x_label = fmt::format("time [{}]", rescale(spec.series, true, "s"));
@@ -155,7 +164,8 @@ PlotSpec force_displacement_spec(const mpm::RunSeries& run, const std::vector<st
   for (std::size_t i = 0; i < wall_names.size(); ++i) {
     LineSeries s;
     const bool moves = *std::max_element(travel[i].begin(), travel[i].end()) > 0.0;
-    s.label = moves ? wall_names[i] : fmt::format("{} (vs {} travel)", wall_names[i], wall_names[mover]);
+    s.label =
+        moves ? wall_names[i] : fmt::format("{} (vs {} travel)", wall_names[i], wall_names[mover]);
     s.x = moves ? travel[i] : travel[mover];
     s.y = force[i];
     spec.series.push_back(std::move(s));
@@ -169,7 +179,8 @@ PlotSpec energy_plot_spec(const std::string& run_path) {
   return energy_plot_spec(mpm::RunFileReader::open(run_path).read_series());
 }
 
-PlotSpec force_displacement_spec(const std::string& run_path, const std::vector<std::string>& wall_names) {
+PlotSpec force_displacement_spec(const std::string& run_path,
+                                 const std::vector<std::string>& wall_names) {
   return force_displacement_spec(mpm::RunFileReader::open(run_path).read_series(), wall_names);
 }
 

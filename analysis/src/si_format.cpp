@@ -1,10 +1,10 @@
 // SI prefixes (see si_format.hpp).
 #include "fragmpm/analysis/si_format.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 namespace fragmpm::analysis {
 

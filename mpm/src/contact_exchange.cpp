@@ -1,5 +1,5 @@
-// Two-field contact momentum exchange, [NBS18] §2.6-2.10. All friction laws are evaluated in impulse
-// form, s = S_slide A_c Δt, so laws that do not need the contact area never divide by it.
+// Two-field contact momentum exchange, [NBS18] §2.6-2.10. All friction laws are evaluated in
+// impulse form, s = S_slide A_c Δt, so laws that do not need the contact area never divide by it.
 #include "fragmpm/mpm/contact_exchange.hpp"
 
 #include <algorithm>
@@ -31,7 +31,8 @@ double sliding_impulse(const VelocityDependentFriction& law, const StickImpulses
   // written with N* = −d_n (the printed "m_red + k d_n" would need d_n taken as a magnitude).
   // Sticking (s ≥ d_t) happens exactly when d_t ≤ μ₀ N*.
   const double denominator = x.reduced_mass + law.slope * x.normal;
-  if (denominator <= 0.0) return law.coefficient * x.normal;  // k < 0 so steep that eq. (22) has no root
+  if (denominator <= 0.0)
+    return law.coefficient * x.normal;  // k < 0 so steep that eq. (22) has no root
   return (x.reduced_mass * law.coefficient + law.slope * x.tangential) * x.normal / denominator;
 }
 
@@ -47,8 +48,8 @@ double sliding_impulse(const SmoothStaticDynamicFriction& law, const StickImpuls
   // k* = v½ m_red and D* = d_t + k*, multiplying s = N* (μ_s v½ + μ_d w)/(v½ + w) by m_red(v½ + w)
   // gives the quadratic
   //   f(s) = s² − (D* + μ_d N*) s + (μ_s k* + μ_d d_t) N* = 0.
-  // f(0) = (μ_s k* + μ_d d_t) N* ≥ 0 and f(d_t) = k* (μ_s N* − d_t) < 0 while sliding, so exactly one
-  // root lies in [0, d_t): the smaller one. Its discriminant is
+  // f(0) = (μ_s k* + μ_d d_t) N* ≥ 0 and f(d_t) = k* (μ_s N* − d_t) < 0 while sliding, so exactly
+  // one root lies in [0, d_t): the smaller one. Its discriminant is
   //   ((D* + μ_d N*)/2)² − (μ_s k* + μ_d d_t) N* = ((D* − μ_d N*)/2)² − (μ_s − μ_d) k* N*,
   // which is eq. (43) times N*². We evaluate the smaller root as c / (b/2 + √disc) (product of the
   // roots is c) to avoid the cancellation of b/2 − √disc when k* is small.
@@ -56,14 +57,17 @@ double sliding_impulse(const SmoothStaticDynamicFriction& law, const StickImpuls
   const double d_star = x.tangential + k_star;
   const double half_b = 0.5 * (d_star + law.dynamic_coefficient * x.normal);
   const double half_difference = 0.5 * (d_star - law.dynamic_coefficient * x.normal);
-  const double c = (law.static_coefficient * k_star + law.dynamic_coefficient * x.tangential) * x.normal;
-  const double discriminant = half_difference * half_difference -
-                              (law.static_coefficient - law.dynamic_coefficient) * k_star * x.normal;
+  const double c =
+      (law.static_coefficient * k_star + law.dynamic_coefficient * x.tangential) * x.normal;
+  const double discriminant =
+      half_difference * half_difference -
+      (law.static_coefficient - law.dynamic_coefficient) * k_star * x.normal;
   return c / (half_b + std::sqrt(std::max(discriminant, 0.0)));  // half_b > 0 since d_t > 0 here
 }
 
 double sliding_impulse(const ThermalSofteningFriction& law, const StickImpulses& x) {
-  return friction_coefficient(law, x.temperature) * x.normal;  // Coulomb with μ(θ) of [XLS21] eq. (15)
+  return friction_coefficient(law, x.temperature) *
+         x.normal;  // Coulomb with μ(θ) of [XLS21] eq. (15)
 }
 
 /// Elliptical adhesion criterion of [NBS18] eq. (25) in impulse form: the interface holds while
@@ -86,7 +90,8 @@ ContactExchange<D> exchange_momentum(const ContactNode<D>& node, const FrictionL
   ContactExchange<D> out;
   if (!(node.mass_a > 0.0) || !(node.mass_b > 0.0) || std::isinf(node.mass_a)) return out;
   const bool rigid_b = std::isinf(node.mass_b);
-  // [NBS18] §2.12: against a rigid b, v_cm = v_b and m_red = m_a; no infinite mass enters arithmetic.
+  // [NBS18] §2.12: against a rigid b, v_cm = v_b and m_red = m_a; no infinite mass enters
+  // arithmetic.
   const double m_red =
       rigid_b ? node.mass_a : node.mass_a * node.mass_b / (node.mass_a + node.mass_b);
 
@@ -132,23 +137,25 @@ ContactExchange<D> exchange_momentum(const ContactNode<D>& node, const FrictionL
   out.momentum_change_a = d_n * node.normal + s * t_hat;
   out.slip_speed = (d_t - s) / m_red;  // [NBS18] eq. (21)
 
-  // Friction work. First order ([NBS18] eq. (27)): W₁ = s (d_t − s)/m_red, the sliding impulse times the
-  // final slip speed. Second order (eq. (31)-(36)): the relative slip velocity varies linearly over the
-  // step, v(t) = (d_t − s)/m_red + (f_t − s/Δt)(t − Δt)/m_red with f_t = Δf_a·t̂ (eq. (29)-(30));
-  // W₂ = s (f_t Δt − s)/m_red (eq. (33)) and v(0) = (W₁ − W₂)/s (eq. (32)). If v(0) ≥ 0 the slip lasted
-  // the whole step, ΔW = W₁ − W₂/2 (eq. (34)) — the exact work s (v(0) + v(Δt))/2 for a constant
-  // acceleration, equal to the tangential kinetic energy removed when f_t = 0. Otherwise slip began
-  // at t_s = Δt (1 − W₁/W₂) (eq. (35)) and ΔW = W₁²/(2 W₂) (eq. (36)); W₂ > W₁ ≥ 0 there.
+  // Friction work. First order ([NBS18] eq. (27)): W₁ = s (d_t − s)/m_red, the sliding impulse
+  // times the final slip speed. Second order (eq. (31)-(36)): the relative slip velocity varies
+  // linearly over the step, v(t) = (d_t − s)/m_red + (f_t − s/Δt)(t − Δt)/m_red with f_t = Δf_a·t̂
+  // (eq. (29)-(30)); W₂ = s (f_t Δt − s)/m_red (eq. (33)) and v(0) = (W₁ − W₂)/s (eq. (32)). If
+  // v(0) ≥ 0 the slip lasted the whole step, ΔW = W₁ − W₂/2 (eq. (34)) — the exact work s (v(0) +
+  // v(Δt))/2 for a constant acceleration, equal to the tangential kinetic energy removed when f_t =
+  // 0. Otherwise slip began at t_s = Δt (1 − W₁/W₂) (eq. (35)) and ΔW = W₁²/(2 W₂) (eq. (36)); W₂ >
+  // W₁ ≥ 0 there.
   const double w1 = s * (d_t - s) / m_red;
   if (order == FrictionWorkOrder::first) {
     out.friction_work = w1;
     return out;
   }
-  // Δf_a = (m_a f_b − m_b f_a)/(m_a + m_b) (eq. (30)); → −f_a for a rigid b, whose motion is prescribed.
-  const Vec<D> delta_f =
-      rigid_b ? Vec<D>(-node.force_a)
-              : Vec<D>((node.mass_a * node.force_b - node.mass_b * node.force_a) /
-                       (node.mass_a + node.mass_b));
+  // Δf_a = (m_a f_b − m_b f_a)/(m_a + m_b) (eq. (30)); → −f_a for a rigid b, whose motion is
+  // prescribed.
+  const Vec<D> delta_f = rigid_b
+                             ? Vec<D>(-node.force_a)
+                             : Vec<D>((node.mass_a * node.force_b - node.mass_b * node.force_a) /
+                                      (node.mass_a + node.mass_b));
   const double f_t = delta_f.dot(t_hat);
   const double w2 = s * (f_t * dt - s) / m_red;
   out.friction_work = (w2 <= w1) ? w1 - 0.5 * w2 : w1 * w1 / (2.0 * w2);
@@ -167,7 +174,8 @@ double contact_area_3d(double node_volume, double volume_a, double volume_b, dou
 }
 
 template <int D>
-double contact_area_from_gradients(const Vec<D>& gradient_a, const Vec<D>& gradient_b, const Vec<D>& normal) {
+double contact_area_from_gradients(const Vec<D>& gradient_a, const Vec<D>& gradient_b,
+                                   const Vec<D>& normal) {
   return std::min(std::abs(gradient_a.dot(normal)), std::abs(gradient_b.dot(normal)));
 }
 

@@ -1,14 +1,14 @@
-// Damage laws: Rankine with mesh-regularised linear softening ([XLS21] eq. (19)-(21)), time to failure
-// ([HH17] eq. (24)), Weibull strengths ([HH17] eq. (25)), stress degradation ([HH17] eq. (26)-(27); [XLS21] eq. (7)) and
-// the energy that damage dissipates.
+// Damage laws: Rankine with mesh-regularised linear softening ([XLS21] eq. (19)-(21)), time to
+// failure
+// ([HH17] eq. (24)), Weibull strengths ([HH17] eq. (25)), stress degradation ([HH17] eq. (26)-(27);
+// [XLS21] eq. (7)) and the energy that damage dissipates.
 #include "fragmpm/mpm/damage_law.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
-
-#include <Eigen/Eigenvalues>
 
 namespace fragmpm::mpm {
 namespace {
@@ -21,14 +21,17 @@ double brittleness(double strength, const RankineSoftening& law) {
 /// Damage within a few ulps of 1 is 1: the time-to-failure increments Δt/τ are decimal fractions
 /// (e.g. 0.1) whose binary sum over τ/Δt steps can fall short of 1 by round-off; without this a
 /// particle would need one extra step to fail.
-double snap_to_one(double d) { return d >= 1.0 - 64.0 * std::numeric_limits<double>::epsilon() ? 1.0 : d; }
+double snap_to_one(double d) {
+  return d >= 1.0 - 64.0 * std::numeric_limits<double>::epsilon() ? 1.0 : d;
+}
 
 template <int D>
 using Eigensolver = Eigen::SelfAdjointEigenSolver<Mat<D>>;
 
 }  // namespace
 
-double rankine_softening_modulus(double strength, const RankineSoftening& law, double characteristic_length) {
+double rankine_softening_modulus(double strength, const RankineSoftening& law,
+                                 double characteristic_length) {
   const double x = brittleness(strength, law) * characteristic_length;  // H̄ l_ch
   if (!(x >= 0.0 && x < 1.0)) return std::numeric_limits<double>::quiet_NaN();
   return x / (1.0 - x);  // [XLS21] eq. (20): H_s = H̄ l_ch / (1 − H̄ l_ch)
@@ -61,8 +64,8 @@ double largest_principal_stress(const Mat<D>& stress) {
 }
 
 template <int D>
-void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double strength, double characteristic_length,
-                   double dt, double& history, double& damage) {
+void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double strength,
+                   double characteristic_length, double dt, double& history, double& damage) {
   if (std::holds_alternative<NoDamage>(law)) return;
   // An infinite (or NaN) strength never fails: such particles keep their history untouched too.
   if (!std::isfinite(strength)) return;
@@ -76,7 +79,8 @@ void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double stre
     // nominal strength, but a strong Weibull draw may still exceed it): no softening branch exists,
     // so the particle fails at once, which is the limit H_s → ∞ of eq. (20).
     double d = 1.0;
-    if (std::isfinite(H_s)) d = std::min(1.0, (1.0 + H_s) * (1.0 - strength / R));  // [XLS21] eq. (20)
+    if (std::isfinite(H_s))
+      d = std::min(1.0, (1.0 + H_s) * (1.0 - strength / R));  // [XLS21] eq. (20)
     damage = std::max(damage, d);
     return;
   }
@@ -92,7 +96,8 @@ void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double stre
 template <int D>
 Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation degradation) {
   if (damage <= 0.0) return trial_stress;
-  if (degradation == Degradation::isotropic) return (1.0 - damage) * trial_stress;  // [XLS21] eq. (7)
+  if (degradation == Degradation::isotropic)
+    return (1.0 - damage) * trial_stress;  // [XLS21] eq. (7)
   // 001 eq. (26-27): scale the tensile principal stresses, keep the compressive ones, rebuild with
   // the same eigenvectors.
   Eigensolver<D> es;
@@ -103,21 +108,21 @@ Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation deg
   return es.eigenvectors() * values.asDiagonal() * es.eigenvectors().transpose();
 }
 
-// Why Δd ψ_t is the dissipation (docs/design.md: "the energy released must equal what the damage law
-// dissipates"). Small strain first: at fixed d the degraded stress is σ = σ̄ − d σ̄⁺ with σ̄ = C ε and
-// σ̄⁺ its tensile principal part. Unloading along the ray s ε (s from 1 to 0) keeps the principal
-// directions and the signs of σ̄, and σ is linear in s, so the energy given back is
+// Why Δd ψ_t is the dissipation (docs/design.md: "the energy released must equal what the damage
+// law dissipates"). Small strain first: at fixed d the degraded stress is σ = σ̄ − d σ̄⁺ with σ̄ = C ε
+// and σ̄⁺ its tensile principal part. Unloading along the ray s ε (s from 1 to 0) keeps the
+// principal directions and the signs of σ̄, and σ is linear in s, so the energy given back is
 //   ∫₀¹ σ(s ε) : ε ds = ½ σ̄ : ε − d ½ σ̄⁺ : ε = ψ − d ψ_t,   ψ_t = ½ Σ_{σ̄_i > 0} σ̄_i ε_i.
 // That recoverable (secant) energy is the stored energy; raising d by Δd at fixed strain releases
 // Δd ψ_t, the energy release Y Δd of [XLS21] eq. (6). Along a proportional strain path (uniaxial
-// tension, the mode-I loading of a crack band) dψ_t = σ̄⁺ : dε, so the work σ : dε minus the change of
-// stored energy is exactly Δd ψ_t at every step. In uniaxial tension σ = (1 − d) E ε with eq. (20)
-// falls linearly from σ_f at ε_f = σ_f/E to zero at ε_u = σ_f (1 + H_s) / (E H_s); the triangle's
-// area ½ σ_f ε_u = σ_f² / (2 E H̄ l_ch) = G_f / l_ch (because (1 + H_s)/H_s = 1/(H̄ l_ch)) is the
-// energy dissipated per unit volume, so a band of width l_ch dissipates G_f per unit crack area.
-// Finite strain: the same argument with Kirchhoff stress and logarithmic strain ln λ_i (exact for a
-// Hencky material, to O(ε) for the neo-Hookean). Isotropic degradation is the special case
-// σ̄⁺ = σ̄, where (1 − d) ψ is an exact potential and ψ_t = ψ for any path. For non-proportional
+// tension, the mode-I loading of a crack band) dψ_t = σ̄⁺ : dε, so the work σ : dε minus the change
+// of stored energy is exactly Δd ψ_t at every step. In uniaxial tension σ = (1 − d) E ε with eq.
+// (20) falls linearly from σ_f at ε_f = σ_f/E to zero at ε_u = σ_f (1 + H_s) / (E H_s); the
+// triangle's area ½ σ_f ε_u = σ_f² / (2 E H̄ l_ch) = G_f / l_ch (because (1 + H_s)/H_s = 1/(H̄ l_ch))
+// is the energy dissipated per unit volume, so a band of width l_ch dissipates G_f per unit crack
+// area. Finite strain: the same argument with Kirchhoff stress and logarithmic strain ln λ_i (exact
+// for a Hencky material, to O(ε) for the neo-Hookean). Isotropic degradation is the special case σ̄⁺
+// = σ̄, where (1 − d) ψ is an exact potential and ψ_t = ψ for any path. For non-proportional
 // mixed-sign paths ψ_t is the secant estimate of the release.
 template <int D>
 double degradable_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation) {
@@ -137,9 +142,11 @@ double degradable_energy(const NeoHookean& model, const Mat<D>& F, Degradation d
 }
 
 template <int D>
-DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F, const Mat<D>& trial_stress,
-                                     double damage, Degradation degradation, double psi) {
-  if (degradation == Degradation::isotropic) return {(1.0 - damage) * trial_stress, psi};  // [XLS21] eq. (7)
+DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F,
+                                     const Mat<D>& trial_stress, double damage,
+                                     Degradation degradation, double psi) {
+  if (degradation == Degradation::isotropic)
+    return {(1.0 - damage) * trial_stress, psi};  // [XLS21] eq. (7)
   const Mat<D> b = F * F.transpose();
   const Mat<D> tau = model.kirchhoff<D>(F);
   Eigensolver<D> es;
@@ -160,7 +167,8 @@ double weibull_median_strength(double volume, const WeibullStrength& w, int dime
   return w.reference_strength * std::pow(w.reference_volume / V, 1.0 / w.modulus);
 }
 
-std::vector<double> weibull_strengths(const std::vector<double>& volumes, const WeibullStrength& w, int dimension) {
+std::vector<double> weibull_strengths(const std::vector<double>& volumes, const WeibullStrength& w,
+                                      int dimension) {
   std::mt19937_64 rng(w.seed);
   std::vector<double> out(volumes.size());
   const double ln_half = std::log(0.5);
@@ -170,22 +178,25 @@ std::vector<double> weibull_strengths(const std::vector<double>& volumes, const 
     // std::uniform_real_distribution).
     const double R = (static_cast<double>(rng() >> 11) + 0.5) * 0x1p-53;
     const double V = dimension == 2 ? volumes[p] * w.thickness : volumes[p];
-    out[p] = w.reference_strength * std::pow(w.reference_volume / V * std::log(R) / ln_half, 1.0 / w.modulus);  // [HH17] eq. (25)
+    out[p] = w.reference_strength * std::pow(w.reference_volume / V * std::log(R) / ln_half,
+                                             1.0 / w.modulus);  // [HH17] eq. (25)
   }
   return out;
 }
 
 template double largest_principal_stress<2>(const Mat<2>&);
 template double largest_principal_stress<3>(const Mat<3>&);
-template void update_damage<2>(const DamageLaw&, const Mat<2>&, double, double, double, double&, double&);
-template void update_damage<3>(const DamageLaw&, const Mat<3>&, double, double, double, double&, double&);
+template void update_damage<2>(const DamageLaw&, const Mat<2>&, double, double, double, double&,
+                               double&);
+template void update_damage<3>(const DamageLaw&, const Mat<3>&, double, double, double, double&,
+                               double&);
 template Mat<2> degrade_stress<2>(const Mat<2>&, double, Degradation);
 template Mat<3> degrade_stress<3>(const Mat<3>&, double, Degradation);
 template double degradable_energy<2>(const NeoHookean&, const Mat<2>&, Degradation);
 template double degradable_energy<3>(const NeoHookean&, const Mat<3>&, Degradation);
-template DegradedState<2> degrade_with_energy<2>(const NeoHookean&, const Mat<2>&, const Mat<2>&, double, Degradation,
-                                                 double);
-template DegradedState<3> degrade_with_energy<3>(const NeoHookean&, const Mat<3>&, const Mat<3>&, double, Degradation,
-                                                 double);
+template DegradedState<2> degrade_with_energy<2>(const NeoHookean&, const Mat<2>&, const Mat<2>&,
+                                                 double, Degradation, double);
+template DegradedState<3> degrade_with_energy<3>(const NeoHookean&, const Mat<3>&, const Mat<3>&,
+                                                 double, Degradation, double);
 
 }  // namespace fragmpm::mpm

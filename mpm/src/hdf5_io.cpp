@@ -58,30 +58,45 @@ class Temp {
 
 template <Element T>
 hid_t memory_type() {
-  if constexpr (std::is_same_v<T, double>) return H5T_NATIVE_DOUBLE;
-  else if constexpr (std::is_same_v<T, float>) return H5T_NATIVE_FLOAT;
-  else if constexpr (std::is_same_v<T, std::int32_t>) return H5T_NATIVE_INT32;
-  else if constexpr (std::is_same_v<T, std::int64_t>) return H5T_NATIVE_INT64;
-  else return H5T_NATIVE_UINT8;
+  if constexpr (std::is_same_v<T, double>)
+    return H5T_NATIVE_DOUBLE;
+  else if constexpr (std::is_same_v<T, float>)
+    return H5T_NATIVE_FLOAT;
+  else if constexpr (std::is_same_v<T, std::int32_t>)
+    return H5T_NATIVE_INT32;
+  else if constexpr (std::is_same_v<T, std::int64_t>)
+    return H5T_NATIVE_INT64;
+  else
+    return H5T_NATIVE_UINT8;
 }
 
 /// Little-endian standard types in the file, so files are identical across platforms.
 template <Element T>
 hid_t file_type() {
-  if constexpr (std::is_same_v<T, double>) return H5T_IEEE_F64LE;
-  else if constexpr (std::is_same_v<T, float>) return H5T_IEEE_F32LE;
-  else if constexpr (std::is_same_v<T, std::int32_t>) return H5T_STD_I32LE;
-  else if constexpr (std::is_same_v<T, std::int64_t>) return H5T_STD_I64LE;
-  else return H5T_STD_U8LE;
+  if constexpr (std::is_same_v<T, double>)
+    return H5T_IEEE_F64LE;
+  else if constexpr (std::is_same_v<T, float>)
+    return H5T_IEEE_F32LE;
+  else if constexpr (std::is_same_v<T, std::int32_t>)
+    return H5T_STD_I32LE;
+  else if constexpr (std::is_same_v<T, std::int64_t>)
+    return H5T_STD_I64LE;
+  else
+    return H5T_STD_U8LE;
 }
 
 template <Element T>
 const char* type_name() {
-  if constexpr (std::is_same_v<T, double>) return "float64";
-  else if constexpr (std::is_same_v<T, float>) return "float32";
-  else if constexpr (std::is_same_v<T, std::int32_t>) return "int32";
-  else if constexpr (std::is_same_v<T, std::int64_t>) return "int64";
-  else return "uint8";
+  if constexpr (std::is_same_v<T, double>)
+    return "float64";
+  else if constexpr (std::is_same_v<T, float>)
+    return "float32";
+  else if constexpr (std::is_same_v<T, std::int32_t>)
+    return "int32";
+  else if constexpr (std::is_same_v<T, std::int64_t>)
+    return "int64";
+  else
+    return "uint8";
 }
 
 std::string join_path(const std::string& base, const std::string& name) {
@@ -128,7 +143,9 @@ Object::Object(std::int64_t id, std::string file, std::string path)
 }
 
 Object::Object(Object&& other) noexcept
-    : id_(std::exchange(other.id_, -1)), file_(std::move(other.file_)), path_(std::move(other.path_)) {}
+    : id_(std::exchange(other.id_, -1)),
+      file_(std::move(other.file_)),
+      path_(std::move(other.path_)) {}
 
 Object& Object::operator=(Object&& other) noexcept {
   if (this != &other) {
@@ -140,15 +157,25 @@ Object& Object::operator=(Object&& other) noexcept {
   return *this;
 }
 
-Object::~Object() { close(); }
+Object::~Object() {
+  close();
+}
 
 void Object::close() noexcept {
   if (id_ < 0) return;
   switch (H5Iget_type(id_)) {
-    case H5I_FILE: H5Fclose(id_); break;
-    case H5I_GROUP: H5Gclose(id_); break;
-    case H5I_DATASET: H5Dclose(id_); break;
-    default: H5Oclose(id_); break;
+    case H5I_FILE:
+      H5Fclose(id_);
+      break;
+    case H5I_GROUP:
+      H5Gclose(id_);
+      break;
+    case H5I_DATASET:
+      H5Dclose(id_);
+      break;
+    default:
+      H5Oclose(id_);
+      break;
   }
   id_ = -1;
 }
@@ -182,8 +209,9 @@ void write_attribute(const Object& object, const std::string& name, hid_t file_t
   if (H5Aexists(object.id(), name.c_str()) > 0 && H5Adelete(object.id(), name.c_str()) < 0)
     fail(object, "cannot replace attribute '" + name + "'");
   Temp space(H5Screate(H5S_SCALAR), H5Sclose);
-  Temp attribute(H5Acreate2(object.id(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                 H5Aclose);
+  Temp attribute(
+      H5Acreate2(object.id(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Aclose);
   if (!attribute.ok() || H5Awrite(attribute.get(), memory_type, value) < 0)
     fail(object, "cannot write attribute '" + name + "'");
 }
@@ -225,7 +253,8 @@ double Object::attribute_double(const std::string& name) const {
   const Temp attribute = open_attribute(*this, name);
   const Temp type(H5Aget_type(attribute.get()), H5Tclose);
   const H5T_class_t cls = H5Tget_class(type.get());
-  if (cls != H5T_FLOAT && cls != H5T_INTEGER) fail(*this, "attribute '" + name + "' is not numeric");
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER)
+    fail(*this, "attribute '" + name + "' is not numeric");
   double value = 0.0;
   if (H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value) < 0)
     fail(*this, "cannot read attribute '" + name + "'");
@@ -246,7 +275,8 @@ std::int64_t Object::attribute_int64(const std::string& name) const {
 std::string Object::attribute_string(const std::string& name) const {
   const Temp attribute = open_attribute(*this, name);
   const Temp type(H5Aget_type(attribute.get()), H5Tclose);
-  if (H5Tget_class(type.get()) != H5T_STRING) fail(*this, "attribute '" + name + "' is not a string");
+  if (H5Tget_class(type.get()) != H5T_STRING)
+    fail(*this, "attribute '" + name + "' is not a string");
   if (H5Tis_variable_str(type.get()) > 0) {
     const Temp memory(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(memory.get(), H5T_VARIABLE);
@@ -264,8 +294,7 @@ std::string Object::attribute_string(const std::string& name) const {
   if (size > 0 && H5Aread(attribute.get(), type.get(), value.data()) < 0)
     fail(*this, "cannot read attribute '" + name + "'");
   value.resize(value.find('\0') == std::string::npos ? value.size() : value.find('\0'));
-  if (H5Tget_strpad(type.get()) == H5T_STR_SPACEPAD)
-    value.erase(value.find_last_not_of(' ') + 1);
+  if (H5Tget_strpad(type.get()) == H5T_STR_SPACEPAD) value.erase(value.find_last_not_of(' ') + 1);
   return value;
 }
 
@@ -308,7 +337,9 @@ H5I_type_t object_type(const Group& group, const std::string& path) {
 }
 }  // namespace
 
-bool Group::is_group(const std::string& path) const { return object_type(*this, path) == H5I_GROUP; }
+bool Group::is_group(const std::string& path) const {
+  return object_type(*this, path) == H5I_GROUP;
+}
 
 bool Group::is_dataset(const std::string& path) const {
   return object_type(*this, path) == H5I_DATASET;
@@ -341,7 +372,8 @@ std::vector<std::string> Group::children() const {
         H5Lget_name_by_idx(id(), ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
     if (length < 0) fail(*this, "cannot list the group");
     std::string name(static_cast<std::size_t>(length) + 1, '\0');
-    H5Lget_name_by_idx(id(), ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), name.size(), H5P_DEFAULT);
+    H5Lget_name_by_idx(id(), ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), name.size(),
+                       H5P_DEFAULT);
     name.resize(static_cast<std::size_t>(length));
     names.push_back(std::move(name));
   }
@@ -361,7 +393,8 @@ Dataset Group::open_dataset(const std::string& path) const {
 }
 
 template <Element T>
-Dataset Group::write(const std::string& path, const T* data, std::size_t count, const Dims& dims) const {
+Dataset Group::write(const std::string& path, const T* data, std::size_t count,
+                     const Dims& dims) const {
   const std::string full = join_path(object_path(), path);
   if (count != element_count(dims))
     throw RunFileError(file_path() + ": " + full + ": " + std::to_string(count) +
@@ -383,13 +416,14 @@ Dataset Group::write(const std::string& path, const T* data, std::size_t count, 
     }
     remove(path);
   }
-  const Temp space(dims.empty() ? H5Screate(H5S_SCALAR)
-                                : H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr),
+  const Temp space(dims.empty()
+                       ? H5Screate(H5S_SCALAR)
+                       : H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr),
                    H5Sclose);
   const Temp links(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
   H5Pset_create_intermediate_group(links.get(), 1);
-  const hid_t dataset =
-      H5Dcreate2(id(), path.c_str(), file_type<T>(), space.get(), links.get(), H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t dataset = H5Dcreate2(id(), path.c_str(), file_type<T>(), space.get(), links.get(),
+                                   H5P_DEFAULT, H5P_DEFAULT);
   if (dataset < 0) fail(*this, "cannot create dataset '" + path + "' " + dims_text(dims));
   Dataset result(dataset, file_path(), full);
   if (count > 0 && H5Dwrite(dataset, memory_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
@@ -419,8 +453,8 @@ Dataset Group::create_extendible(const std::string& path, const Dims& row_dims,
   H5Pset_chunk(create.get(), static_cast<int>(chunk.size()), chunk.data());
   const Temp links(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
   H5Pset_create_intermediate_group(links.get(), 1);
-  const hid_t dataset =
-      H5Dcreate2(id(), path.c_str(), file_type<T>(), space.get(), links.get(), create.get(), H5P_DEFAULT);
+  const hid_t dataset = H5Dcreate2(id(), path.c_str(), file_type<T>(), space.get(), links.get(),
+                                   create.get(), H5P_DEFAULT);
   if (dataset < 0) fail(*this, "cannot create extendible dataset '" + path + "'");
   return Dataset(dataset, file_path(), join_path(object_path(), path));
 }
@@ -467,7 +501,8 @@ void Dataset::append_rows(const T* data, std::size_t rows) const {
   if (H5Dset_extent(id(), extent.data()) < 0)
     fail(*this, "cannot extend dataset (is it extendible?)");
   const Temp file_space(H5Dget_space(id()), H5Sclose);
-  H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+  H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                      nullptr);
   const Temp memory_space(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr),
                           H5Sclose);
   if (H5Dwrite(id(), memory_type<T>(), memory_space.get(), file_space.get(), H5P_DEFAULT, data) < 0)
@@ -491,14 +526,15 @@ File File::create(const std::string& path, bool overwrite) {
   if (!overwrite && std::filesystem::exists(path, ec))
     throw RunFileError(path + ": file exists; refusing to replace it without overwrite");
   const Temp access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  // The HDF5 1.8 file format: readable by every current tool (h5py, MATLAB, ParaView), and it allows
-  // attributes larger than 64 KiB (dense attribute storage) for long scene texts.
+  // The HDF5 1.8 file format: readable by every current tool (h5py, MATLAB, ParaView), and it
+  // allows attributes larger than 64 KiB (dense attribute storage) for long scene texts.
   H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_V18);
-  const hid_t file = H5Fcreate(path.c_str(), overwrite ? H5F_ACC_TRUNC : H5F_ACC_EXCL, H5P_DEFAULT,
-                               access.get());
+  const hid_t file =
+      H5Fcreate(path.c_str(), overwrite ? H5F_ACC_TRUNC : H5F_ACC_EXCL, H5P_DEFAULT, access.get());
   if (file < 0) {
     const std::string detail = hdf5_detail();
-    throw RunFileError(path + ": cannot create the file" + (detail.empty() ? "" : " (HDF5: " + detail + ")"));
+    throw RunFileError(path + ": cannot create the file" +
+                       (detail.empty() ? "" : " (HDF5: " + detail + ")"));
   }
   return File(file, path, "/");
 }
@@ -514,7 +550,8 @@ File File::open(const std::string& path, bool writable) {
   const hid_t file = H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file < 0) {
     const std::string detail = hdf5_detail();
-    throw RunFileError(path + ": cannot open the file" + std::string(writable ? " for writing" : "") +
+    throw RunFileError(path + ": cannot open the file" +
+                       std::string(writable ? " for writing" : "") +
                        (detail.empty() ? "" : " (HDF5: " + detail + ")"));
   }
   return File(file, path, "/");
@@ -532,11 +569,12 @@ void File::flush() const {
 
 // ---------------------------------------------------------------- instantiations
 
-#define FRAGMPM_H5_INSTANTIATE(T)                                                                     \
-  template Dataset Group::write<T>(const std::string&, const T*, std::size_t, const Dims&) const;     \
-  template Array<T> Group::read<T>(const std::string&) const;                                         \
-  template Dataset Group::create_extendible<T>(const std::string&, const Dims&, std::size_t) const;   \
-  template Array<T> Dataset::read<T>() const;                                                         \
+#define FRAGMPM_H5_INSTANTIATE(T)                                                                 \
+  template Dataset Group::write<T>(const std::string&, const T*, std::size_t, const Dims&) const; \
+  template Array<T> Group::read<T>(const std::string&) const;                                     \
+  template Dataset Group::create_extendible<T>(const std::string&, const Dims&, std::size_t)      \
+      const;                                                                                      \
+  template Array<T> Dataset::read<T>() const;                                                     \
   template void Dataset::append_rows<T>(const T*, std::size_t) const;
 
 FRAGMPM_H5_INSTANTIATE(double)

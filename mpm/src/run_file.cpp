@@ -1,5 +1,4 @@
 // The run file of docs/design.md on top of hdf5_io; see run_file.hpp for the layout.
-#include "fragmpm/mpm/build_info.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
 #include <algorithm>
@@ -9,17 +8,17 @@
 #include <map>
 #include <set>
 
+#include "fragmpm/mpm/build_info.hpp"
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/mpm/xdmf.hpp"
 #include "run_file_fields.hpp"
 
-
 namespace fragmpm::mpm {
 
 const std::vector<std::string>& all_frame_fields() {
-  static const std::vector<std::string> fields{"x",      "v",      "F",       "volume0", "mass",
-                                               "r1",     "r2",     "stress",  "damage",  "surface",
-                                               "body",   "material", "temperature"};
+  static const std::vector<std::string> fields{
+      "x",      "v",      "F",       "volume0", "mass",     "r1",         "r2",
+      "stress", "damage", "surface", "body",    "material", "temperature"};
   return fields;
 }
 
@@ -77,10 +76,16 @@ const std::vector<ScalarColumn<D>>& scalar_columns() {
   return columns;
 }
 
-const char* energy_units(int dimension) { return dimension == 2 ? "J/m (per unit thickness)" : "J"; }
+const char* energy_units(int dimension) {
+  return dimension == 2 ? "J/m (per unit thickness)" : "J";
+}
 
-std::string wall_force_name(const std::string& wall) { return "wall_" + wall + "_force"; }
-std::string wall_displacement_name(const std::string& wall) { return "wall_" + wall + "_displacement"; }
+std::string wall_force_name(const std::string& wall) {
+  return "wall_" + wall + "_force";
+}
+std::string wall_displacement_name(const std::string& wall) {
+  return "wall_" + wall + "_displacement";
+}
 
 }  // namespace
 
@@ -137,8 +142,8 @@ struct RunFile<D>::Impl {
       if (name == "x" || info.kind == XdmfField::Kind::scalar) continue;
       const std::string target = padded_group(frame.index);
       if (r.exists(target + "/" + name)) continue;
-      write_padded_copy(r.open_group("frames/" + frame_name(frame.index)), r.require_group(target), name, info.kind,
-                        name == "F" ? 1.0 : 0.0);
+      write_padded_copy(r.open_group("frames/" + frame_name(frame.index)), r.require_group(target),
+                        name, info.kind, name == "F" ? 1.0 : 0.0);
       wrote = true;
     }
     return wrote;
@@ -166,7 +171,8 @@ struct RunFile<D>::Impl {
       std::vector<std::int32_t> values(largest);
       for (std::size_t p = 0; p < largest; ++p) values[p] = static_cast<std::int32_t>(p);
       r.write("xdmf/point_ids", values, {largest})
-          .set_attribute("description", "0 ... N-1: point connectivity for the XDMF file beside this one");
+          .set_attribute("description",
+                         "0 ... N-1: point connectivity for the XDMF file beside this one");
       ids = largest;
       wrote = true;
     }
@@ -181,11 +187,13 @@ struct RunFile<D>::Impl {
         if (name == "x") continue;  // the geometry
         const FieldInfo info = field_info<D>(name);
         const bool padded = D == 2 && info.kind != XdmfField::Kind::scalar;
-        f.fields.push_back({name, info.kind, info.number, padded ? "/" + padded_group(frame.index) + "/" + name : ""});
+        f.fields.push_back({name, info.kind, info.number,
+                            padded ? "/" + padded_group(frame.index) + "/" + name : ""});
       }
       light.push_back(std::move(f));
     }
-    write_xdmf(xmf_path, std::filesystem::path(path).filename().string(), D, light, "/xdmf/point_ids", ids);
+    write_xdmf(xmf_path, std::filesystem::path(path).filename().string(), D, light,
+               "/xdmf/point_ids", ids);
   }
 
   /// Rebuilds the frame list from the file (when opening an existing run).
@@ -212,8 +220,8 @@ RunFile<D> RunFile<D>::create(const std::string& path, const RunMeta& meta, bool
   for (std::size_t w = 0; w < meta.wall_names.size(); ++w) {
     const std::string& name = meta.wall_names[w];
     if (name.empty() || name.find_first_of("/\n") != std::string::npos ||
-        std::find(meta.wall_names.begin(), meta.wall_names.begin() + static_cast<std::ptrdiff_t>(w), name) !=
-            meta.wall_names.begin() + static_cast<std::ptrdiff_t>(w))
+        std::find(meta.wall_names.begin(), meta.wall_names.begin() + static_cast<std::ptrdiff_t>(w),
+                  name) != meta.wall_names.begin() + static_cast<std::ptrdiff_t>(w))
       throw RunFileError(path + ": wall name '" + name +
                          "' must be non-empty, unique and free of '/' and line breaks");
   }
@@ -244,13 +252,16 @@ RunFile<D> RunFile<D>::create(const std::string& path, const RunMeta& meta, bool
   step.set_attribute("units", "1");
   step.set_attribute("description", "step number of the row");
   const h5::Dataset momentum = series.create_extendible<double>("momentum", {std::size_t{D}});
-  momentum.set_attribute("units", D == 2 ? "kg/s (momentum per unit thickness, kg m/s per m)" : "kg m/s");
+  momentum.set_attribute("units",
+                         D == 2 ? "kg/s (momentum per unit thickness, kg m/s per m)" : "kg m/s");
   momentum.set_attribute("description", "total momentum, steps x D");
   for (const std::string& w : meta.wall_names) {
-    const h5::Dataset force = series.create_extendible<double>(wall_force_name(w), {std::size_t{D}});
+    const h5::Dataset force =
+        series.create_extendible<double>(wall_force_name(w), {std::size_t{D}});
     force.set_attribute("units", D == 2 ? "N/m (per unit thickness)" : "N");
     force.set_attribute("description", "reaction exerted by the material on the wall, steps x D");
-    const h5::Dataset disp = series.create_extendible<double>(wall_displacement_name(w), {std::size_t{D}});
+    const h5::Dataset disp =
+        series.create_extendible<double>(wall_displacement_name(w), {std::size_t{D}});
     disp.set_attribute("units", "m");
     disp.set_attribute("description", "wall displacement since t = 0, steps x D");
   }
@@ -293,7 +304,8 @@ int RunFile<D>::write_frame(long long step, double time, const Particles<D>& par
     if (std::find(known.begin(), known.end(), f) == known.end()) {
       std::string list;
       for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-      throw RunFileError(impl_->path + ": unknown frame field '" + f + "' (expected one of " + list + ")");
+      throw RunFileError(impl_->path + ": unknown frame field '" + f + "' (expected one of " +
+                         list + ")");
     }
   }
   const std::size_t n = particles.size();
@@ -305,7 +317,8 @@ int RunFile<D>::write_frame(long long step, double time, const Particles<D>& par
   g.set_attribute("time", time);
   g.set_attribute("step", static_cast<std::int64_t>(step));
 
-  typename Impl::Frame frame{index, step, time, n, write_particle_datasets<D>(g, particles, fields)};
+  typename Impl::Frame frame{index, step, time, n,
+                             write_particle_datasets<D>(g, particles, fields)};
   impl_->frames.push_back(std::move(frame));
   impl_->file.flush();
   impl_->rewrite_xdmf();
@@ -318,10 +331,10 @@ void RunFile<D>::append_series(const std::vector<SeriesRow<D>>& rows) {
   const std::size_t walls = impl_->wall_names.size();
   for (const SeriesRow<D>& r : rows)
     if (r.wall_force.size() != walls || r.wall_displacement.size() != walls)
-      throw RunFileError(impl_->path + ": /series: the row of step " + std::to_string(r.step) + " has " +
-                         std::to_string(r.wall_force.size()) + " wall forces and " +
-                         std::to_string(r.wall_displacement.size()) + " displacements; the run has " +
-                         std::to_string(walls) + " walls");
+      throw RunFileError(impl_->path + ": /series: the row of step " + std::to_string(r.step) +
+                         " has " + std::to_string(r.wall_force.size()) + " wall forces and " +
+                         std::to_string(r.wall_displacement.size()) +
+                         " displacements; the run has " + std::to_string(walls) + " walls");
   std::vector<double> column(rows.size());
   for (const ScalarColumn<D>& c : scalar_columns<D>()) {
     for (std::size_t k = 0; k < rows.size(); ++k) column[k] = c.value(rows[k]);
@@ -337,7 +350,8 @@ void RunFile<D>::append_series(const std::vector<SeriesRow<D>>& rows) {
     for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].wall_force[w];
     impl_->series_dataset(wall_force_name(impl_->wall_names[w])).append_rows(pack<D>(vectors));
     for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].wall_displacement[w];
-    impl_->series_dataset(wall_displacement_name(impl_->wall_names[w])).append_rows(pack<D>(vectors));
+    impl_->series_dataset(wall_displacement_name(impl_->wall_names[w]))
+        .append_rows(pack<D>(vectors));
   }
   impl_->file.flush();
 }
@@ -377,11 +391,14 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
   g.write("body", p.body, {n});
   g.write("material", p.material, {n});
   g.write("strength", p.strength, {n});
-  if (!p.temperature.empty()) g.write("temperature", p.temperature, {n});
-  else if (g.exists("temperature")) g.remove("temperature");
+  if (!p.temperature.empty())
+    g.write("temperature", p.temperature, {n});
+  else if (g.exists("temperature"))
+    g.remove("temperature");
   g.set_attribute("time", checkpoint.time);
   g.set_attribute("step", static_cast<std::int64_t>(checkpoint.step));
-  for (const auto& [name, member] : accumulator_fields()) g.set_attribute(name, checkpoint.totals.*member);
+  for (const auto& [name, member] : accumulator_fields())
+    g.set_attribute(name, checkpoint.totals.*member);
   g.set_attribute("complete", std::int64_t{1});
   impl_->file.flush();
 }
@@ -427,9 +444,11 @@ void RunFile<D>::truncate_after(long long step) {
              list.end());
 
   // Rows are in step order: keep the leading rows with step ≤ `step`.
-  const std::vector<std::int64_t> steps = impl_->series_dataset("step").template read<std::int64_t>().values;
+  const std::vector<std::int64_t> steps =
+      impl_->series_dataset("step").template read<std::int64_t>().values;
   const std::size_t keep = static_cast<std::size_t>(
-      std::find_if(steps.begin(), steps.end(), [&](std::int64_t s) { return s > step; }) - steps.begin());
+      std::find_if(steps.begin(), steps.end(), [&](std::int64_t s) { return s > step; }) -
+      steps.begin());
   for (const auto& [name, dataset] : impl_->series) dataset.set_rows(keep);
   impl_->file.flush();
   impl_->rewrite_xdmf();
@@ -484,13 +503,14 @@ std::vector<std::string> write_particle_datasets(const h5::Group& g, const Parti
   const std::size_t n = particles.size();
   std::vector<std::string> written;
   for (const std::string& field : all_frame_fields()) {
-    if (field != "x" && !fields.empty() && std::find(fields.begin(), fields.end(), field) == fields.end())
+    if (field != "x" && !fields.empty() &&
+        std::find(fields.begin(), fields.end(), field) == fields.end())
       continue;
     if (field == "temperature" && particles.temperature.empty()) continue;
     if (field_size(particles, field) != n)
       throw RunFileError(g.describe("particle array for '" + field + "' has " +
-                                    std::to_string(field_size(particles, field)) + " entries, expected " +
-                                    std::to_string(n)));
+                                    std::to_string(field_size(particles, field)) +
+                                    " entries, expected " + std::to_string(n)));
     const h5::Dataset ds = write_field(g, particles, field);
     const FieldInfo info = field_info<D>(field);
     ds.set_attribute("units", info.units);
@@ -500,8 +520,10 @@ std::vector<std::string> write_particle_datasets(const h5::Group& g, const Parti
   return written;
 }
 
-template std::vector<std::string> write_particle_datasets<2>(const h5::Group&, const Particles<2>&, const std::vector<std::string>&);
-template std::vector<std::string> write_particle_datasets<3>(const h5::Group&, const Particles<3>&, const std::vector<std::string>&);
+template std::vector<std::string> write_particle_datasets<2>(const h5::Group&, const Particles<2>&,
+                                                             const std::vector<std::string>&);
+template std::vector<std::string> write_particle_datasets<3>(const h5::Group&, const Particles<3>&,
+                                                             const std::vector<std::string>&);
 template Particles<2> read_particle_datasets<2>(const h5::Group&);
 template Particles<3> read_particle_datasets<3>(const h5::Group&);
 

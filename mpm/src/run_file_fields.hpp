@@ -1,6 +1,6 @@
 #pragma once
-// How particle arrays map to run-file datasets (docs/design.md): units, shapes and the copies between
-// Eigen arrays of small matrices and row-major HDF5 buffers, and the layout code the writer
+// How particle arrays map to run-file datasets (docs/design.md): units, shapes and the copies
+// between Eigen arrays of small matrices and row-major HDF5 buffers, and the layout code the writer
 // (run_file.cpp) and the reader (run_file_reader.cpp) share. Private to mpm/src.
 #include <string>
 #include <vector>
@@ -46,10 +46,12 @@ FieldInfo field_info(const std::string& name) {
   const bool plane = D == 2;
   if (name == "x") return {"m", "position, N x D", K::vector, N::float64};
   if (name == "v") return {"m/s", "velocity, N x D", K::vector, N::float64};
-  if (name == "F") return {"1", "deformation gradient, N x D x D, F[p][i][j] = F_ij", K::tensor, N::float64};
+  if (name == "F")
+    return {"1", "deformation gradient, N x D x D, F[p][i][j] = F_ij", K::tensor, N::float64};
   if (name == "volume0")
     return {plane ? "m^2 (per unit thickness)" : "m^3", "initial volume, N", K::scalar, N::float64};
-  if (name == "mass") return {plane ? "kg/m (per unit thickness)" : "kg", "mass, N", K::scalar, N::float64};
+  if (name == "mass")
+    return {plane ? "kg/m (per unit thickness)" : "kg", "mass, N", K::scalar, N::float64};
   if (name == "r1") return {"m", "CPDI domain edge vector r1, N x D", K::vector, N::float64};
   if (name == "r2") return {"m", "CPDI domain edge vector r2, N x D", K::vector, N::float64};
   if (name == "stress")
@@ -57,7 +59,8 @@ FieldInfo field_info(const std::string& name) {
   if (name == "damage") return {"1", "damage d in [0, 1], N", K::scalar, N::float64};
   if (name == "surface") return {"1", "1 = on a body boundary, N", K::scalar, N::uint8};
   if (name == "body") return {"1", "body id, N", K::scalar, N::int32};
-  if (name == "material") return {"1", "index into the scene's material list, N", K::scalar, N::int32};
+  if (name == "material")
+    return {"1", "index into the scene's material list, N", K::scalar, N::int32};
   return {"K", "temperature, N", K::scalar, N::float64};  // "temperature"
 }
 
@@ -91,7 +94,8 @@ std::vector<double> pack_column(const std::vector<Mat<D>>& values, int column) {
 
 /// Reads a dataset and checks its shape, so a foreign or damaged file gives a clear message.
 template <h5::Element T>
-std::vector<T> read_shaped(const h5::Group& group, const std::string& name, const h5::Dims& expected) {
+std::vector<T> read_shaped(const h5::Group& group, const std::string& name,
+                           const h5::Dims& expected) {
   h5::Array<T> array = group.read<T>(name);
   if (array.dims != expected) {
     auto text = [](const h5::Dims& dims) {

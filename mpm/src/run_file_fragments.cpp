@@ -22,6 +22,8 @@ void FragmentGroupWriter::replace(const std::string& name, const TableGroup& tab
   }
 }
 
-void FragmentGroupWriter::flush() const { file_.flush(); }
+void FragmentGroupWriter::flush() const {
+  file_.flush();
+}
 
 }  // namespace fragmpm::mpm

@@ -41,8 +41,8 @@ std::vector<ModuleDecision> parse_modules(const h5::Group& meta) {
     const std::size_t separator = rest.find(kModuleSeparator);
     const std::string state = rest.substr(0, separator);
     if (colon == std::string::npos || (state != "on" && state != "off"))
-      throw RunFileError(meta.describe("attribute 'modules': line '" + line +
-                                       "' is not 'name: on|off — reason'"));
+      throw RunFileError(
+          meta.describe("attribute 'modules': line '" + line + "' is not 'name: on|off — reason'"));
     m.active = state == "on";
     if (separator != std::string::npos)
       m.reason = rest.substr(separator + std::string(kModuleSeparator).size());
@@ -52,7 +52,8 @@ std::vector<ModuleDecision> parse_modules(const h5::Group& meta) {
 }
 
 bool digits_only(const std::string& name) {
-  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
+  return !name.empty() &&
+         std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 }  // namespace
@@ -80,7 +81,8 @@ std::vector<FrameEntry> scan_frames(const h5::Group& group) {
       if (g.exists(field)) frame.fields.push_back(field);
     frames.push_back(std::move(frame));
   }
-  std::sort(frames.begin(), frames.end(), [](const FrameEntry& a, const FrameEntry& b) { return a.index < b.index; });
+  std::sort(frames.begin(), frames.end(),
+            [](const FrameEntry& a, const FrameEntry& b) { return a.index < b.index; });
   return frames;
 }
 
@@ -98,8 +100,10 @@ Particles<D> read_frame_group(const h5::Group& root, const std::string& path, in
   return read_particle_datasets<D>(g);
 }
 
-template Particles<2> read_frame_group<2>(const h5::Group&, const std::string&, int, std::size_t, double*, long long*);
-template Particles<3> read_frame_group<3>(const h5::Group&, const std::string&, int, std::size_t, double*, long long*);
+template Particles<2> read_frame_group<2>(const h5::Group&, const std::string&, int, std::size_t,
+                                          double*, long long*);
+template Particles<3> read_frame_group<3>(const h5::Group&, const std::string&, int, std::size_t,
+                                          double*, long long*);
 
 }  // namespace run_file_detail
 
@@ -115,7 +119,8 @@ const std::vector<double>& RunSeries::column(const std::string& name) const {
   return it->second;
 }
 
-RunFileReader::RunFileReader(h5::File file, std::string path) : file_(std::move(file)), path_(std::move(path)) {}
+RunFileReader::RunFileReader(h5::File file, std::string path)
+    : file_(std::move(file)), path_(std::move(path)) {}
 
 RunFileReader RunFileReader::open(const std::string& path) {
   RunFileReader reader(h5::File::open(path, false), path);
@@ -127,15 +132,19 @@ RunFileReader RunFileReader::open(const std::string& path) {
   if (!meta.has_attribute("dimension"))
     throw NotARunFile(path + ": not a FragMPM run file (/meta has no 'dimension' attribute)");
   reader.dimension_ = static_cast<int>(meta.attribute_int64("dimension"));
-  if (meta.has_attribute("wall_names")) reader.walls_ = split_lines(meta.attribute_string("wall_names"));
+  if (meta.has_attribute("wall_names"))
+    reader.walls_ = split_lines(meta.attribute_string("wall_names"));
   reader.frames_ = scan_frames(root.open_group("frames"));
   return reader;
 }
 
-RunMeta RunFileReader::meta() const { return read_meta(file_.root().open_group("meta")); }
+RunMeta RunFileReader::meta() const {
+  return read_meta(file_.root().open_group("meta"));
+}
 
 const FrameEntry* RunFileReader::find_frame(int index) const {
-  const auto it = std::find_if(frames_.begin(), frames_.end(), [&](const FrameEntry& f) { return f.index == index; });
+  const auto it = std::find_if(frames_.begin(), frames_.end(),
+                               [&](const FrameEntry& f) { return f.index == index; });
   return it == frames_.end() ? nullptr : &*it;
 }
 

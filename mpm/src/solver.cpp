@@ -33,17 +33,19 @@ bool partitioning_active(const Problem<D>& problem) {
 template <int D>
 std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   std::vector<ModuleDecision> plan;
-  const char* shape = problem.grid.shape_function == ShapeFunctionKind::cpdi     ? "CPDI"
+  const char* shape = problem.grid.shape_function == ShapeFunctionKind::cpdi    ? "CPDI"
                       : problem.grid.shape_function == ShapeFunctionKind::ugimp ? "uGIMP"
                                                                                 : "linear";
-  plan.push_back({"mechanics", true, std::string("explicit update-stress-last MPM with ") + shape +
-                                         " shape functions, neo-Hookean bodies"});
+  plan.push_back({"mechanics", true,
+                  std::string("explicit update-stress-last MPM with ") + shape +
+                      " shape functions, neo-Hookean bodies"});
   plan.push_back({"walls", !problem.walls.empty(),
                   problem.walls.empty() ? "no walls in the scene"
                                         : std::to_string(problem.walls.size()) + " rigid wall(s)"});
   plan.push_back({"loads", !problem.loads.empty(),
-                  problem.loads.empty() ? "no traction loads"
-                                        : std::to_string(problem.loads.size()) + " traction load(s)"});
+                  problem.loads.empty()
+                      ? "no traction loads"
+                      : std::to_string(problem.loads.size()) + " traction load(s)"});
   plan.push_back({"gravity", problem.gravity.squaredNorm() > 0.0,
                   problem.gravity.squaredNorm() > 0.0 ? "gravity set in [physics]" : "no gravity"});
   std::vector<std::string> damaging;
@@ -58,8 +60,9 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   const std::size_t bodies = problem.body_names.size();
   std::string partition_reason;
   if (problem.contact.partitioning == Partitioning::bodies)
-    partition_reason = "partitioning = \"bodies\" in [contact]: body 0 and the other bodies are "
-                       "two always-separable fields (multimaterial contact, [NBS18] §2.2)";
+    partition_reason =
+        "partitioning = \"bodies\" in [contact]: body 0 and the other bodies are "
+        "two always-separable fields (multimaterial contact, [NBS18] §2.2)";
   else if (problem.contact.partitioning == Partitioning::off)
     partition_reason = "partitioning = \"off\" in [contact]: one velocity field (single-field MPM)";
   else if (partitioning_active(problem))
@@ -72,8 +75,9 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
     partition_reason = "one body and no damage: one velocity field, no neighbour search";
   plan.push_back({"partitioning", partitioning_active(problem), partition_reason});
   plan.push_back({"thermal", problem.thermal.active(),
-                  problem.thermal.active() ? problem.thermal.reason
-                                           : "no thermal data and no heat sources: no thermal arrays"});
+                  problem.thermal.active()
+                      ? problem.thermal.reason
+                      : "no thermal data and no heat sources: no thermal arrays"});
   return plan;
 }
 
@@ -90,12 +94,13 @@ double stable_time_step(const Problem<D>& problem, const Particles<D>& particles
     const double c = models[particles.material[p]].wave_speed(density);
     max_speed = std::max(max_speed, c + particles.v[p].norm());
   }
-  // The explicit conduction limit joins the CFL limit when the thermal module runs (docs/design.md).
+  // The explicit conduction limit joins the CFL limit when the thermal module runs
+  // (docs/design.md).
   const double thermal_limit = thermal_stable_time_step<D>(problem, particles, cfl);
   if (max_speed <= 0.0) return thermal_limit;
   // Multilinear hats with a lumped mass: the stiffest grid mode of a cell has ω = 2c√D/h, so
-  // central-difference stepping is stable for Δt < 2/ω = h/(c√D). The 1D textbook h/c is the 1D value
-  // and lets a 2D scene run unstably at C_cfl close to 1.
+  // central-difference stepping is stable for Δt < 2/ω = h/(c√D). The 1D textbook h/c is the 1D
+  // value and lets a 2D scene run unstably at C_cfl close to 1.
   return std::min(thermal_limit, cfl * problem.grid.cell_size / (std::sqrt(double(D)) * max_speed));
 }
 
@@ -117,7 +122,8 @@ struct Solver<D>::Impl {
     // Adhesion ([NBS18] eq. (24)) and contact conductance ([XLS21] eq. (12)-(13)) scale with the
     // contact area.
     s.plan.needs_contact_area =
-        std::holds_alternative<AdhesiveFriction>(problem.contact.friction) || problem.thermal.active();
+        std::holds_alternative<AdhesiveFriction>(problem.contact.friction) ||
+        problem.thermal.active();
     s.plan.gap_test = problem.contact.position_gap_test;
     s.plan.principal_rule = problem.contact.nodal_gradient == NodalGradientRule::principal;
     s.kernel_radius = problem.grid.cell_size * std::sqrt(double(D));
@@ -163,7 +169,9 @@ struct Solver<D>::Impl {
     s.row.wall_displacement.assign(s.problem.walls.size(), Vec<D>::Zero());
     s.next_dt_limit = stable_time_step<D>(s.problem, P, s.problem.time.cfl);
   }
-  void compute_initial_state() { state.thermal ? compute_initial_state<true>() : compute_initial_state<false>(); }
+  void compute_initial_state() {
+    state.thermal ? compute_initial_state<true>() : compute_initial_state<false>();
+  }
 
   /// The step, written once: every stage a scene does not need is compiled out (Partitioned,
   /// Thermal) or skipped by the plan fixed at setup.
@@ -183,13 +191,15 @@ struct Solver<D>::Impl {
   template <ShapeFunctionKind Kind>
   std::optional<NumericalFailure> advance_with_modules(double dt) {
     const bool partitioned = state.partition.this_step;
-    if (state.thermal) return partitioned ? advance<Kind, true, true>(dt) : advance<Kind, false, true>(dt);
+    if (state.thermal)
+      return partitioned ? advance<Kind, true, true>(dt) : advance<Kind, false, true>(dt);
     return partitioned ? advance<Kind, true, false>(dt) : advance<Kind, false, false>(dt);
   }
 
   std::optional<NumericalFailure> take_step(double dt_cap) {
     StepState<D>& s = state;
-    const double dt = std::min(s.problem.time.fixed_dt > 0.0 ? s.problem.time.fixed_dt : s.next_dt_limit, dt_cap);
+    const double dt =
+        std::min(s.problem.time.fixed_dt > 0.0 ? s.problem.time.fixed_dt : s.next_dt_limit, dt_cap);
     if (!(dt > 0.0) || !std::isfinite(dt)) {
       NumericalFailure failure{s.step, s.time, -1,
                                "time step is not positive and finite (dt = " + std::to_string(dt) +
@@ -204,9 +214,15 @@ struct Solver<D>::Impl {
     if (!s.load_force.empty()) update_load_forces(s);
     std::optional<NumericalFailure> failure;
     switch (s.problem.grid.shape_function) {
-      case ShapeFunctionKind::linear: failure = advance_with_modules<ShapeFunctionKind::linear>(dt); break;
-      case ShapeFunctionKind::ugimp: failure = advance_with_modules<ShapeFunctionKind::ugimp>(dt); break;
-      case ShapeFunctionKind::cpdi: failure = advance_with_modules<ShapeFunctionKind::cpdi>(dt); break;
+      case ShapeFunctionKind::linear:
+        failure = advance_with_modules<ShapeFunctionKind::linear>(dt);
+        break;
+      case ShapeFunctionKind::ugimp:
+        failure = advance_with_modules<ShapeFunctionKind::ugimp>(dt);
+        break;
+      case ShapeFunctionKind::cpdi:
+        failure = advance_with_modules<ShapeFunctionKind::cpdi>(dt);
+        break;
     }
     if (failure) return failure;
     if (s.thermal) {
@@ -220,8 +236,9 @@ struct Solver<D>::Impl {
     row.time = s.time;
     row.dt = dt;
     row.totals = s.totals;
-    row.balance_error = (row.kinetic + row.strain + s.totals.dissipated + s.totals.friction_work) -
-                        (s.totals.initial_energy + s.totals.wall_work + s.totals.gravity_work + s.totals.load_work);
+    row.balance_error =
+        (row.kinetic + row.strain + s.totals.dissipated + s.totals.friction_work) -
+        (s.totals.initial_energy + s.totals.wall_work + s.totals.gravity_work + s.totals.load_work);
     for (std::size_t w = 0; w < s.problem.walls.size(); ++w)
       row.wall_displacement[w] = s.problem.walls[w].velocity.displacement(s.time);
     return std::nullopt;
@@ -238,27 +255,45 @@ template <int D>
 Solver<D>& Solver<D>::operator=(Solver&&) noexcept = default;
 
 template <int D>
-std::optional<NumericalFailure> Solver<D>::step(double dt_cap) { return impl_->take_step(dt_cap); }
+std::optional<NumericalFailure> Solver<D>::step(double dt_cap) {
+  return impl_->take_step(dt_cap);
+}
 template <int D>
-const Problem<D>& Solver<D>::problem() const { return impl_->state.problem; }
+const Problem<D>& Solver<D>::problem() const {
+  return impl_->state.problem;
+}
 template <int D>
-const Particles<D>& Solver<D>::particles() const { return impl_->state.problem.particles; }
+const Particles<D>& Solver<D>::particles() const {
+  return impl_->state.problem.particles;
+}
 template <int D>
-Particles<D>& Solver<D>::particles() { return impl_->state.problem.particles; }
+Particles<D>& Solver<D>::particles() {
+  return impl_->state.problem.particles;
+}
 template <int D>
-double Solver<D>::time() const { return impl_->state.time; }
+double Solver<D>::time() const {
+  return impl_->state.time;
+}
 template <int D>
-long long Solver<D>::step_count() const { return impl_->state.step; }
+long long Solver<D>::step_count() const {
+  return impl_->state.step;
+}
 template <int D>
-const EnergyAccumulators& Solver<D>::accumulators() const { return impl_->state.totals; }
+const EnergyAccumulators& Solver<D>::accumulators() const {
+  return impl_->state.totals;
+}
 template <int D>
-const SeriesRow<D>& Solver<D>::last_row() const { return impl_->state.row; }
+const SeriesRow<D>& Solver<D>::last_row() const {
+  return impl_->state.row;
+}
 template <int D>
 Vec<D> Solver<D>::wall_displacement(std::size_t wall) const {
   return impl_->state.problem.walls.at(wall).velocity.displacement(impl_->state.time);
 }
 template <int D>
-double Solver<D>::stable_dt() const { return impl_->state.next_dt_limit; }
+double Solver<D>::stable_dt() const {
+  return impl_->state.next_dt_limit;
+}
 
 template <int D>
 void Solver<D>::restore(double time, long long step, const EnergyAccumulators& totals,

@@ -7,7 +7,8 @@
 namespace fragmpm::mpm {
 
 template <int D>
-double thermal_stable_time_step(const Problem<D>& problem, const Particles<D>& particles, double courant) {
+double thermal_stable_time_step(const Problem<D>& problem, const Particles<D>& particles,
+                                double courant) {
   const auto& materials = problem.thermal.materials;
   double limit = std::numeric_limits<double>::infinity();
   if (materials.empty() || particles.temperature.empty()) return limit;
@@ -17,8 +18,10 @@ double thermal_stable_time_step(const Problem<D>& problem, const Particles<D>& p
   for (std::int64_t p = 0; p < n; ++p) {
     const ThermalMaterial& m = materials[static_cast<std::size_t>(particles.material[p])];
     if (!(m.conductivity > 0.0)) continue;
-    const double density = particles.mass[p] / (particles.volume0[p] * particles.F[p].determinant());
-    limit = std::min(limit, courant * density * m.specific_heat * h * h / (2.0 * D * m.conductivity));
+    const double density =
+        particles.mass[p] / (particles.volume0[p] * particles.F[p].determinant());
+    limit =
+        std::min(limit, courant * density * m.specific_heat * h * h / (2.0 * D * m.conductivity));
   }
   return limit;
 }
@@ -30,7 +33,8 @@ double thermal_energy(const Problem<D>& problem, const Particles<D>& particles) 
   double sum = 0.0;
   for (std::size_t p = 0; p < particles.size(); ++p) {
     const ThermalMaterial& m = materials[static_cast<std::size_t>(particles.material[p])];
-    sum += particles.mass[p] * m.specific_heat * (particles.temperature[p] - m.reference_temperature);
+    sum +=
+        particles.mass[p] * m.specific_heat * (particles.temperature[p] - m.reference_temperature);
   }
   return sum;
 }

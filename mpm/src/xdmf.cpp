@@ -16,11 +16,20 @@ std::string xml_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -35,15 +44,18 @@ std::string exact(double value) {
 
 const char* number_attributes(XdmfField::Number number) {
   switch (number) {
-    case XdmfField::Number::int32: return R"(NumberType="Int" Precision="4")";
-    case XdmfField::Number::uint8: return R"(NumberType="UChar" Precision="1")";
-    default: return R"(NumberType="Float" Precision="8")";
+    case XdmfField::Number::int32:
+      return R"(NumberType="Int" Precision="4")";
+    case XdmfField::Number::uint8:
+      return R"(NumberType="UChar" Precision="1")";
+    default:
+      return R"(NumberType="Float" Precision="8")";
   }
 }
 
 /// <DataItem> naming a whole HDF5 dataset.
-std::string data_item(const std::string& dims, XdmfField::Number number, const std::string& hdf_path,
-                      const std::string& indent) {
+std::string data_item(const std::string& dims, XdmfField::Number number,
+                      const std::string& hdf_path, const std::string& indent) {
   return indent + "<DataItem Dimensions=\"" + dims + "\" " + number_attributes(number) +
          " Format=\"HDF\">" + xml_escape(hdf_path) + "</DataItem>\n";
 }
@@ -51,7 +63,8 @@ std::string data_item(const std::string& dims, XdmfField::Number number, const s
 /// <Attribute> of one field; vectors are N × 3 and tensors N × 3 × 3 datasets (see xdmf.hpp).
 std::string attribute(const XdmfField& field, const std::string& n, const std::string& prefix,
                       const std::string& h5_reference) {
-  const std::string hdf_path = field.dataset.empty() ? prefix + field.name : h5_reference + ":" + field.dataset;
+  const std::string hdf_path =
+      field.dataset.empty() ? prefix + field.name : h5_reference + ":" + field.dataset;
   const char* type = "Scalar";
   std::string dims = n;
   if (field.kind == XdmfField::Kind::vector) {
@@ -62,19 +75,21 @@ std::string attribute(const XdmfField& field, const std::string& n, const std::s
     dims += " 3 3";
   }
   return "        <Attribute Name=\"" + xml_escape(field.name) + "\" AttributeType=\"" + type +
-         "\" Center=\"Node\">\n" + data_item(dims, field.number, hdf_path, "          ") + "        </Attribute>\n";
+         "\" Center=\"Node\">\n" + data_item(dims, field.number, hdf_path, "          ") +
+         "        </Attribute>\n";
 }
 
 }  // namespace
 
-h5::Dataset write_padded_copy(const h5::Group& source, const h5::Group& target, const std::string& name,
-                              XdmfField::Kind kind, double zz) {
+h5::Dataset write_padded_copy(const h5::Group& source, const h5::Group& target,
+                              const std::string& name, XdmfField::Kind kind, double zz) {
   const h5::Array<double> in = source.read<double>(name);
   const std::size_t n = in.dims.empty() ? 0 : in.dims[0];
   const bool tensor = kind == XdmfField::Kind::tensor;
   const h5::Dims expected = tensor ? h5::Dims{n, 2, 2} : h5::Dims{n, 2};
   if (kind == XdmfField::Kind::scalar || in.dims != expected)
-    throw RunFileError(source.describe("dataset '" + name + "' is not a 2D " + (tensor ? "tensor" : "vector")));
+    throw RunFileError(
+        source.describe("dataset '" + name + "' is not a 2D " + (tensor ? "tensor" : "vector")));
   std::vector<double> out(n * (tensor ? 9 : 3), 0.0);
   for (std::size_t p = 0; p < n; ++p) {
     if (tensor) {
@@ -124,7 +139,8 @@ void write_xdmf(const std::string& xmf_path, const std::string& h5_reference, in
           << number_attributes(XdmfField::Number::int32) << ">\n"
           << "            <DataItem Dimensions=\"3 1\" NumberType=\"Int\" Format=\"XML\">0 1 " << n
           << "</DataItem>\n"
-          << data_item(std::to_string(point_ids_length), XdmfField::Number::int32, ids, "            ")
+          << data_item(std::to_string(point_ids_length), XdmfField::Number::int32, ids,
+                       "            ")
           << "          </DataItem>\n";
     }
     out << "        </Topology>\n"
@@ -134,7 +150,8 @@ void write_xdmf(const std::string& xmf_path, const std::string& h5_reference, in
     // damage first: ParaView colours a newly opened file by its first point array.
     std::vector<const XdmfField*> fields;
     for (const XdmfField& field : frame.fields) fields.push_back(&field);
-    std::stable_partition(fields.begin(), fields.end(), [](const XdmfField* f) { return f->name == "damage"; });
+    std::stable_partition(fields.begin(), fields.end(),
+                          [](const XdmfField* f) { return f->name == "damage"; });
     for (const XdmfField* field : fields) out << attribute(*field, n, prefix, h5_reference);
     out << "      </Grid>\n";
   }

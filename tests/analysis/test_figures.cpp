@@ -2,7 +2,6 @@
 // particle figures with colour-map colours at known pixels, clear errors on bad input, and
 // `fragmpm render` through the binary on a small run file.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,10 +9,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "fragmpm/analysis/axis_ticks.hpp"
 #include "fragmpm/analysis/colour_map.hpp"
@@ -43,7 +41,8 @@ fs::path figure_directory(const std::string& name) {
     }
   };
   static Cleanup cleanup;
-  const fs::path dir = fs::path(::testing::TempDir()) / ("fragmpm_figures_" + std::to_string(getpid()) + "_" + name);
+  const fs::path dir =
+      fs::path(::testing::TempDir()) / ("fragmpm_figures_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   cleanup.dirs.push_back(dir);
@@ -51,7 +50,8 @@ fs::path figure_directory(const std::string& name) {
 }
 
 int run_fragmpm(const std::string& arguments, const fs::path& log) {
-  const std::string command = std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
+  const std::string command =
+      std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -70,8 +70,12 @@ bool is_colour(const cv::Vec3b& bgr, Rgb c, int tolerance = 0) {
          std::abs(bgr[0] - c.b) <= tolerance;
 }
 
-bool is_dark(const cv::Vec3b& bgr) { return bgr[0] < 60 && bgr[1] < 60 && bgr[2] < 60; }
-bool is_white(const cv::Vec3b& bgr) { return bgr[0] == 255 && bgr[1] == 255 && bgr[2] == 255; }
+bool is_dark(const cv::Vec3b& bgr) {
+  return bgr[0] < 60 && bgr[1] < 60 && bgr[2] < 60;
+}
+bool is_white(const cv::Vec3b& bgr) {
+  return bgr[0] == 255 && bgr[1] == 255 && bgr[2] == 255;
+}
 
 /// Three unit squares (side 1 mm) in a row, 3 mm apart, centres at x = 0, 3, 6 mm.
 ParticleFigure three_squares() {
@@ -153,7 +157,9 @@ TEST(FrameFigure, MaximumPrincipalStressOfTwoByTwoCauchyStress) {
     parse_frame_field("pressure");
     FAIL() << "an unknown field must be refused";
   } catch (const FigureError& e) {
-    EXPECT_NE(std::string(e.what()).find("damage, temperature, speed, stress, body"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("damage, temperature, speed, stress, body"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -187,8 +193,10 @@ TEST(LinePlot, AxesAreDrawnAndTheSeriesFollowsItsLine) {
   ASSERT_EQ(image.rows, 600);
   // The axis frame: the column just left of the plot area and the row just below it are dark
   // over their whole length.
-  for (int y = f.top; y < f.bottom; ++y) ASSERT_TRUE(is_dark(image.at<cv::Vec3b>(y, f.left - 1))) << "row " << y;
-  for (int x = f.left; x < f.right; ++x) ASSERT_TRUE(is_dark(image.at<cv::Vec3b>(f.bottom, x))) << "column " << x;
+  for (int y = f.top; y < f.bottom; ++y)
+    ASSERT_TRUE(is_dark(image.at<cv::Vec3b>(y, f.left - 1))) << "row " << y;
+  for (int x = f.left; x < f.right; ++x)
+    ASSERT_TRUE(is_dark(image.at<cv::Vec3b>(f.bottom, x))) << "column " << x;
   // The data map puts x = 0 and x = 10 inside the plot area, ticks at 0, 2, …, 10.
   ASSERT_EQ(f.x.major.size(), 6u);
   EXPECT_GT(f.to_px(0.0), f.left);
@@ -200,7 +208,8 @@ TEST(LinePlot, AxesAreDrawnAndTheSeriesFollowsItsLine) {
     const double px = f.to_px(x), py = f.to_py(2.0 * x);
     bool found = false;
     for (int dy = -1; dy <= 1 && !found; ++dy)
-      for (int dx = -1; dx <= 1 && !found; ++dx) found = is_colour(pixel(image, px + dx, py + dy), colour, 12);
+      for (int dx = -1; dx <= 1 && !found; ++dx)
+        found = is_colour(pixel(image, px + dx, py + dy), colour, 12);
     EXPECT_TRUE(found) << "no series colour at x = " << x << " (pixel " << px << ", " << py << ")";
   }
   // Away from the line and the grid (x = 9, y = 3), the plot area is background.
@@ -208,7 +217,8 @@ TEST(LinePlot, AxesAreDrawnAndTheSeriesFollowsItsLine) {
   // Tick labels: dark ink under the x axis below the tick at x = 10.
   int ink = 0;
   for (int y = f.bottom + 12; y < f.bottom + 45; ++y)
-    for (int x = static_cast<int>(f.to_px(10.0)) - 15; x < static_cast<int>(f.to_px(10.0)) + 15; ++x)
+    for (int x = static_cast<int>(f.to_px(10.0)) - 15; x < static_cast<int>(f.to_px(10.0)) + 15;
+         ++x)
       ink += image.at<cv::Vec3b>(y, x)[1] < 160 ? 1 : 0;  // antialiased strokes: mid-grey counts
   EXPECT_GT(ink, 20) << "the tick label '10' is drawn under its tick";
 }
@@ -223,7 +233,8 @@ TEST(LinePlot, BadInputGivesClearErrors) {
     FAIL() << "a zero on a log axis must be refused";
   } catch (const FigureError& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find("series 1 'diameters', point 2: x = 0 is not positive"), std::string::npos) << m;
+    EXPECT_NE(m.find("series 1 'diameters', point 2: x = 0 is not positive"), std::string::npos)
+        << m;
     EXPECT_NE(m.find("log x axis"), std::string::npos) << m;
   }
   spec.log_x = false;
@@ -284,9 +295,11 @@ TEST(ParticleFigure, IdsTakeCategoricalColours) {
   const cv::Mat image = render_particle_figure(fig);
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector2d c = f.to_pixel(fig.x[i]);
-    EXPECT_TRUE(is_colour(pixel(image, c.x(), c.y()), categorical_colour(fig.ids[i]))) << "square " << i;
+    EXPECT_TRUE(is_colour(pixel(image, c.x(), c.y()), categorical_colour(fig.ids[i])))
+        << "square " << i;
   }
-  EXPECT_TRUE(is_colour(pixel(image, f.to_pixel(fig.x[2]).x(), f.to_pixel(fig.x[2]).y()), no_data_colour()));
+  EXPECT_TRUE(is_colour(pixel(image, f.to_pixel(fig.x[2]).x(), f.to_pixel(fig.x[2]).y()),
+                        no_data_colour()));
   EXPECT_NE(categorical_colour(0), categorical_colour(1));
   EXPECT_NE(categorical_colour(10), categorical_colour(11));
 }
@@ -311,10 +324,11 @@ TEST(VerifyPlot, WritesPngAndRefusesAWrongHeader) {
   const fs::path csv = dir / "bar.csv", png = dir / "bar.png";
   {
     std::ofstream out(csv);
-    out << "case,variant,level,cell_size_m,particles,dt_s,steps,wall_s,metric,value,reference,error\n";
+    out << "case,variant,level,cell_size_m,particles,dt_s,steps,wall_s,metric,value,reference,"
+           "error\n";
     for (int level = 0; level < 3; ++level)
-      out << "bar,cpdi," << level << ",0.1,10,1e-6,100," << 0.1 * std::pow(4.0, level) << ",period,1,1,"
-          << 0.1 * std::pow(0.25, level) << "\n";
+      out << "bar,cpdi," << level << ",0.1,10,1e-6,100," << 0.1 * std::pow(4.0, level)
+          << ",period,1,1," << 0.1 * std::pow(0.25, level) << "\n";
     out << "bar,cpdi,3,0.1,10,1e-6,100,1.0,period,1,1,0\n";  // exact: cannot sit on a log axis
   }
   write_verify_plot(csv.string(), png.string());
@@ -332,14 +346,18 @@ TEST(VerifyPlot, WritesPngAndRefusesAWrongHeader) {
 
 TEST(RenderCommand, BadInputExitsWithCodeTwo) {
   const fs::path dir = figure_directory("render_bad");
-  EXPECT_EQ(run_fragmpm("render " + (dir / "missing.h5").string() + " --field damage -o " + (dir / "a.png").string(),
+  EXPECT_EQ(run_fragmpm("render " + (dir / "missing.h5").string() + " --field damage -o " +
+                            (dir / "a.png").string(),
                         dir / "log1"),
             2);
-  EXPECT_NE(read_text(dir / "log1").find("no such file"), std::string::npos) << read_text(dir / "log1");
-  EXPECT_EQ(run_fragmpm("render " + (dir / "missing.h5").string() + " --field pressure -o " + (dir / "a.png").string(),
+  EXPECT_NE(read_text(dir / "log1").find("no such file"), std::string::npos)
+      << read_text(dir / "log1");
+  EXPECT_EQ(run_fragmpm("render " + (dir / "missing.h5").string() + " --field pressure -o " +
+                            (dir / "a.png").string(),
                         dir / "log2"),
             2);
-  EXPECT_NE(read_text(dir / "log2").find("unknown field 'pressure'"), std::string::npos) << read_text(dir / "log2");
+  EXPECT_NE(read_text(dir / "log2").find("unknown field 'pressure'"), std::string::npos)
+      << read_text(dir / "log2");
   EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
 
@@ -381,7 +399,8 @@ TEST(RenderCommand, RendersATinyRunFileToThePngSizeAsked) {
     file.write_frame(2, 2e-7, p, {"x", "r1", "r2", "v"});  // frame 1 keeps no damage
   }
   const std::string png = (dir / "damage.png").string();
-  ASSERT_EQ(run_fragmpm("render " + run + " --field damage --frame 0 -o " + png + " --width 640 --height 480",
+  ASSERT_EQ(run_fragmpm("render " + run + " --field damage --frame 0 -o " + png +
+                            " --width 640 --height 480",
                         dir / "log"),
             0)
       << read_text(dir / "log");
@@ -389,32 +408,49 @@ TEST(RenderCommand, RendersATinyRunFileToThePngSizeAsked) {
   ASSERT_FALSE(image.empty());
   EXPECT_EQ(image.cols, 640);
   EXPECT_EQ(image.rows, 480);
-  // The block is drawn in viridis(0.5): a 2:1 block filling most of the width covers > 20 000 pixels.
+  // The block is drawn in viridis(0.5): a 2:1 block filling most of the width covers > 20 000
+  // pixels.
   int block = 0;
   for (int y = 0; y < image.rows; ++y)
-    for (int x = 0; x < image.cols; ++x) block += is_colour(image.at<cv::Vec3b>(y, x), viridis(0.5)) ? 1 : 0;
+    for (int x = 0; x < image.cols; ++x)
+      block += is_colour(image.at<cv::Vec3b>(y, x), viridis(0.5)) ? 1 : 0;
   EXPECT_GT(block, 20000);
   // Refuses to replace the PNG without --overwrite, and replaces it with.
   EXPECT_EQ(run_fragmpm("render " + run + " --field body --frame 0 -o " + png, dir / "log"), 2);
-  EXPECT_NE(read_text(dir / "log").find("--overwrite"), std::string::npos) << read_text(dir / "log");
+  EXPECT_NE(read_text(dir / "log").find("--overwrite"), std::string::npos)
+      << read_text(dir / "log");
   EXPECT_EQ(cv::imread(png).cols, 640) << "the refused render left the file alone";
-  EXPECT_EQ(run_fragmpm("render " + run + " --field body --frame 0 -o " + png + " --overwrite", dir / "log"), 0)
+  EXPECT_EQ(run_fragmpm("render " + run + " --field body --frame 0 -o " + png + " --overwrite",
+                        dir / "log"),
+            0)
       << read_text(dir / "log");
   EXPECT_EQ(cv::imread(png).cols, 1200);
   // Frames that do not exist, fields the frame lacks, and the run's series plots.
-  EXPECT_EQ(run_fragmpm("render " + run + " --field damage --frame 7 -o " + (dir / "f7.png").string(), dir / "log"),
-            2);
-  EXPECT_NE(read_text(dir / "log").find("frames 0 to 1"), std::string::npos) << read_text(dir / "log");
-  EXPECT_EQ(run_fragmpm("render " + run + " --field damage -o " + (dir / "last.png").string(), dir / "log"), 2);
-  EXPECT_NE(read_text(dir / "log").find("/frames/000001/damage"), std::string::npos) << read_text(dir / "log");
-  EXPECT_EQ(run_fragmpm("render " + run + " --field temperature --frame 0 -o " + (dir / "t.png").string(), dir / "log"),
-            2);
-  EXPECT_EQ(run_fragmpm("render " + run + " --field speed -o " + (dir / "speed.png").string(), dir / "log"), 0)
+  EXPECT_EQ(
+      run_fragmpm("render " + run + " --field damage --frame 7 -o " + (dir / "f7.png").string(),
+                  dir / "log"),
+      2);
+  EXPECT_NE(read_text(dir / "log").find("frames 0 to 1"), std::string::npos)
       << read_text(dir / "log");
-  // Fragments, labelled as analyze does: the two bodies of frame 0 are two fragments of 25 particles
-  // each, drawn in the first two categorical colours in equal areas.
+  EXPECT_EQ(run_fragmpm("render " + run + " --field damage -o " + (dir / "last.png").string(),
+                        dir / "log"),
+            2);
+  EXPECT_NE(read_text(dir / "log").find("/frames/000001/damage"), std::string::npos)
+      << read_text(dir / "log");
+  EXPECT_EQ(
+      run_fragmpm("render " + run + " --field temperature --frame 0 -o " + (dir / "t.png").string(),
+                  dir / "log"),
+      2);
+  EXPECT_EQ(run_fragmpm("render " + run + " --field speed -o " + (dir / "speed.png").string(),
+                        dir / "log"),
+            0)
+      << read_text(dir / "log");
+  // Fragments, labelled as analyze does: the two bodies of frame 0 are two fragments of 25
+  // particles each, drawn in the first two categorical colours in equal areas.
   const std::string fragments_png = (dir / "fragments.png").string();
-  ASSERT_EQ(run_fragmpm("render " + run + " --field fragment --frame 0 -o " + fragments_png, dir / "log"), 0)
+  ASSERT_EQ(
+      run_fragmpm("render " + run + " --field fragment --frame 0 -o " + fragments_png, dir / "log"),
+      0)
       << read_text(dir / "log");
   image = cv::imread(fragments_png);
   int first = 0, second = 0;
@@ -425,16 +461,25 @@ TEST(RenderCommand, RendersATinyRunFileToThePngSizeAsked) {
     }
   EXPECT_GT(first, 50000);
   EXPECT_NEAR(static_cast<double>(second) / first, 1.0, 0.05);
-  EXPECT_EQ(run_fragmpm("render " + run + " --field fragment --frame 1 -o " + (dir / "f1.png").string(), dir / "log"),
-            2);
-  EXPECT_NE(read_text(dir / "log").find("/frames/000001/damage"), std::string::npos) << read_text(dir / "log");
-  EXPECT_EQ(run_fragmpm("render " + run + " --series energy -o " + (dir / "energy.png").string(), dir / "log"), 0)
+  EXPECT_EQ(
+      run_fragmpm("render " + run + " --field fragment --frame 1 -o " + (dir / "f1.png").string(),
+                  dir / "log"),
+      2);
+  EXPECT_NE(read_text(dir / "log").find("/frames/000001/damage"), std::string::npos)
       << read_text(dir / "log");
-  EXPECT_EQ(run_fragmpm("render " + run + " --series force-displacement -o " + (dir / "fd.png").string(), dir / "log"),
+  EXPECT_EQ(run_fragmpm("render " + run + " --series energy -o " + (dir / "energy.png").string(),
+                        dir / "log"),
             0)
       << read_text(dir / "log");
+  EXPECT_EQ(
+      run_fragmpm("render " + run + " --series force-displacement -o " + (dir / "fd.png").string(),
+                  dir / "log"),
+      0)
+      << read_text(dir / "log");
   EXPECT_EQ(cv::imread((dir / "fd.png").string()).rows, 900);
-  EXPECT_EQ(run_fragmpm("render " + run + " --series pressure -o " + (dir / "p.png").string(), dir / "log"), 2);
+  EXPECT_EQ(run_fragmpm("render " + run + " --series pressure -o " + (dir / "p.png").string(),
+                        dir / "log"),
+            2);
 }
 
 TEST(SeriesFigures, FixedWallReactionIsPlottedAgainstTime) {
@@ -464,10 +509,10 @@ TEST(SeriesFigures, FixedWallReactionIsPlottedAgainstTime) {
 
 TEST(SeriesFigures, LongRunsPlotWindowMeansOfTheForce) {
   // 2000 steps of Δt = 1 ns under a steady 5 kN/m on a platen moving at 1 m/s, except that every
-  // 100th step is cut to 1 ps and carries an 11 ns-worth impulse, as when the wall plane passes a row
-  // of grid nodes. A load cell reads impulse over time: a window of 4.95 ns (400 windows) that holds
-  // a spike and at least 4 ordinary steps reads at most 5 kN/m · (4 + 11) / 4 = 18.75 kN/m, not the
-  // 55 GN/m of the spike's own step; every other window reads exactly 5 kN/m.
+  // 100th step is cut to 1 ps and carries an 11 ns-worth impulse, as when the wall plane passes a
+  // row of grid nodes. A load cell reads impulse over time: a window of 4.95 ns (400 windows) that
+  // holds a spike and at least 4 ordinary steps reads at most 5 kN/m · (4 + 11) / 4 = 18.75 kN/m,
+  // not the 55 GN/m of the spike's own step; every other window reads exactly 5 kN/m.
   const fs::path dir = figure_directory("window_means");
   const std::string run = (dir / "crush.h5").string();
   const int n = 2000;
@@ -528,5 +573,6 @@ TEST(FrameFigure, StressColourRangeIsClippedToThePercentilesOfLargeFrames) {
 }
 
 TEST(ParticleFigure, NoIdSharesTheGreyOfNone) {
-  for (std::int64_t id = 0; id < 1000; ++id) ASSERT_NE(categorical_colour(id), no_data_colour()) << id;
+  for (std::int64_t id = 0; id < 1000; ++id)
+    ASSERT_NE(categorical_colour(id), no_data_colour()) << id;
 }

@@ -1,13 +1,12 @@
-// Fragments (docs/design.md): union-find labelling, fines, the raster cross-check, per-fragment shape
-// statistics against closed forms, and the empirical CDFs.
+// Fragments (docs/design.md): union-find labelling, fines, the raster cross-check, per-fragment
+// shape statistics against closed forms, and the empirical CDFs.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
+#include <opencv2/core.hpp>
 #include <random>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 #include "fragmpm/analysis/convex_hull_measures.hpp"
 #include "fragmpm/analysis/distributions.hpp"
@@ -99,7 +98,8 @@ TEST(FragmentShape, SquareOfParticlesHasExactAreaDiameterAndHull) {
   EXPECT_NEAR(s.centroid_x / (0.5 * L), 1.0, 1e-12);
   EXPECT_NEAR(s.centroid_y / (0.5 * L), 1.0, 1e-12);
   EXPECT_NEAR(s.mass / (kDensity * L * L), 1.0, 1e-12);
-  EXPECT_NEAR(s.velocity_x, 3.0 + 0.5 * L * 1e3, 1e-12);  // mean of a linear field = value at centroid
+  EXPECT_NEAR(s.velocity_x, 3.0 + 0.5 * L * 1e3,
+              1e-12);  // mean of a linear field = value at centroid
   EXPECT_NEAR(s.velocity_y, -2.0, 1e-12);
   EXPECT_TRUE(std::isnan(s.temperature));
   // Four-direction Crofton on an axis-aligned square: π/8 (4L + 8L/√2) ≈ 0.948 · 4L (its known
@@ -200,7 +200,8 @@ TEST(FragmentLabels, FragmentsPressedTogetherStayTwo) {
   EXPECT_EQ(labels.particles[0], 100);
   EXPECT_EQ(labels.particles[1], 100);
   // The picture cannot tell them apart: one component, which the comparison reports as merged.
-  const fa::LabellingComparison c = fa::compare_labellings(labels, fa::raster_fragments(now, labels));
+  const fa::LabellingComparison c =
+      fa::compare_labellings(labels, fa::raster_fragments(now, labels));
   EXPECT_EQ(c.raster_components, 1u);
   EXPECT_EQ(c.merged, 1u);
   EXPECT_FALSE(c.agree());
@@ -209,8 +210,10 @@ TEST(FragmentLabels, FragmentsPressedTogetherStayTwo) {
 
 TEST(FragmentLabels, GrainsTouchingInTheReferenceAreSeparateBodies) {
   P2 P;
-  add_lattice(P, 10, 10, [](double x, double) { return x < 5 * kSpacing; }, 0);
-  add_lattice(P, 10, 10, [](double x, double) { return x > 5 * kSpacing; }, 1);
+  add_lattice(
+      P, 10, 10, [](double x, double) { return x < 5 * kSpacing; }, 0);
+  add_lattice(
+      P, 10, 10, [](double x, double) { return x > 5 * kSpacing; }, 1);
   EXPECT_EQ(fa::label_fragments(P, P).count(), 2u);
 }
 
@@ -268,21 +271,28 @@ TEST(FragmentRaster, AgreesWithTheGraphOnSeparatedFragments) {
   P2 P;
   const double s = kSpacing;
   // A disk, a rotated ellipse, a body split by a masked row, and a rotated square, all well apart.
-  add_lattice(P, 20, 20, [&](double x, double y) { return std::hypot(x - 10 * s, y - 10 * s) < 9.5 * s; }, 0);
+  add_lattice(
+      P, 20, 20, [&](double x, double y) { return std::hypot(x - 10 * s, y - 10 * s) < 9.5 * s; },
+      0);
   std::size_t mark = P.size();
-  add_lattice(P, 30, 16, [&](double x, double y) {
-    const double u = (x - 15 * s) / (14 * s), v = (y - 8 * s) / (7 * s);
-    return u * u + v * v < 1.0;
-  }, 1);
+  add_lattice(
+      P, 30, 16,
+      [&](double x, double y) {
+        const double u = (x - 15 * s) / (14 * s), v = (y - 8 * s) / (7 * s);
+        return u * u + v * v < 1.0;
+      },
+      1);
   rotate(P, mark, P.size(), 0.4, {15 * s, 8 * s});
   translate(P, mark, P.size(), {30 * s, 0.0});
   mark = P.size();
-  add_lattice(P, 12, 15, [](double, double) { return true; }, 2);
+  add_lattice(
+      P, 12, 15, [](double, double) { return true; }, 2);
   for (std::size_t p = mark; p < P.size(); ++p)
     if (std::abs(P.x[p](1) - 7.5 * s) < 0.1 * s) P.damage[p] = 1.0;
   translate(P, mark, P.size(), {0.0, 30 * s});
   mark = P.size();
-  add_lattice(P, 8, 8, [](double, double) { return true; }, 3);
+  add_lattice(
+      P, 8, 8, [](double, double) { return true; }, 3);
   rotate(P, mark, P.size(), 0.7, {4 * s, 4 * s});
   translate(P, mark, P.size(), {30 * s, 30 * s});
 
@@ -363,7 +373,8 @@ TEST(Distributions, FragmentCdfsOfACrushedBlockAreMonotoneAndEndAtOne) {
   std::vector<int> rows, cols;
   for (int k = 0; k < 5; ++k) rows.push_back(cut(rng)), cols.push_back(cut(rng));
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const int i = static_cast<int>(P.x[p](0) / kSpacing), j = static_cast<int>(P.x[p](1) / kSpacing);
+    const int i = static_cast<int>(P.x[p](0) / kSpacing),
+              j = static_cast<int>(P.x[p](1) / kSpacing);
     for (const int r : rows) P.damage[p] = (j == r) ? 1.0 : P.damage[p];
     for (const int c : cols) P.damage[p] = (i == c) ? 1.0 : P.damage[p];
   }

@@ -1,12 +1,11 @@
-// Shape measures shared by grains and fragments (docs/design.md): closed forms for rectangles, disks and
-// ellipses, and the invariance that makes pixels and particle domains interchangeable.
+// Shape measures shared by grains and fragments (docs/design.md): closed forms for rectangles,
+// disks and ellipses, and the invariance that makes pixels and particle domains interchangeable.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
-#include <vector>
-
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "fragmpm/analysis/region_shape.hpp"
 
@@ -75,7 +74,8 @@ TEST(RegionShape, RotatedEllipseGivesAxisRatioAndAngle) {
   cv::Mat labels = cv::Mat::zeros(200, 200, CV_32S);
   paint(labels, 1, [&](double x, double y) {
     const double dx = x - 100, dy = y - 100;
-    const double u = dx * std::cos(angle) + dy * std::sin(angle), v = -dx * std::sin(angle) + dy * std::cos(angle);
+    const double u = dx * std::cos(angle) + dy * std::sin(angle),
+                 v = -dx * std::sin(angle) + dy * std::cos(angle);
     return (u * u) / (A * A) + (v * v) / (B * B) < 1.0;
   });
   const fa::RegionShape sh = fa::label_region_shapes(labels, 1.0)[0].shape;
@@ -98,7 +98,8 @@ TEST(RegionShape, LatticeOfParticleDomainsEqualsOneRectangle) {
   std::vector<fa::ShapeCell> cells;
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 5; ++j)
-      cells.push_back(fa::parallelogram_cell((i + 0.5) * h + 3.0, (j + 0.5) * h - 1.0, h, 0.0, 0.0, h));
+      cells.push_back(
+          fa::parallelogram_cell((i + 0.5) * h + 3.0, (j + 0.5) * h - 1.0, h, 0.0, 0.0, h));
   const fa::RegionShape sh = fa::region_shape(cells);
   EXPECT_NEAR(sh.area, 50 * h * h, 1e-20);
   EXPECT_NEAR(sh.roundness, 0.5, 1e-9);
@@ -107,7 +108,8 @@ TEST(RegionShape, LatticeOfParticleDomainsEqualsOneRectangle) {
   EXPECT_NEAR(sh.centroid_y, -1.0 + 2.5 * h, 1e-12);
   EXPECT_TRUE(std::isnan(sh.perimeter));
   // One domain of the whole rectangle has the same shape.
-  const fa::ShapeCell whole = fa::parallelogram_cell(3.0 + 5 * h, -1.0 + 2.5 * h, 10 * h, 0.0, 0.0, 5 * h);
+  const fa::ShapeCell whole =
+      fa::parallelogram_cell(3.0 + 5 * h, -1.0 + 2.5 * h, 10 * h, 0.0, 0.0, 5 * h);
   const fa::RegionShape one = fa::region_shape(std::vector<fa::ShapeCell>{whole});
   EXPECT_NEAR(one.roundness, sh.roundness, 1e-9);
   EXPECT_NEAR(one.major_axis, sh.major_axis, 1e-12);
@@ -116,14 +118,14 @@ TEST(RegionShape, LatticeOfParticleDomainsEqualsOneRectangle) {
 TEST(RegionShape, ShearedDomainEqualsItsSubdivision) {
   // A sheared parallelogram split into 4 × 4 similar pieces has the same moments (exact algebra).
   const double r1x = 3.0, r1y = 0.5, r2x = 1.2, r2y = 2.0, cx = 10.0, cy = -4.0;
-  const fa::RegionShape whole =
-      fa::region_shape(std::vector<fa::ShapeCell>{fa::parallelogram_cell(cx, cy, r1x, r1y, r2x, r2y)});
+  const fa::RegionShape whole = fa::region_shape(
+      std::vector<fa::ShapeCell>{fa::parallelogram_cell(cx, cy, r1x, r1y, r2x, r2y)});
   std::vector<fa::ShapeCell> pieces;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
       const double s = (i + 0.5) / 4 - 0.5, t = (j + 0.5) / 4 - 0.5;
-      pieces.push_back(fa::parallelogram_cell(cx + s * r1x + t * r2x, cy + s * r1y + t * r2y, r1x / 4,
-                                              r1y / 4, r2x / 4, r2y / 4));
+      pieces.push_back(fa::parallelogram_cell(cx + s * r1x + t * r2x, cy + s * r1y + t * r2y,
+                                              r1x / 4, r1y / 4, r2x / 4, r2y / 4));
     }
   const fa::RegionShape split = fa::region_shape(pieces);
   EXPECT_NEAR(split.area, std::abs(r1x * r2y - r1y * r2x), 1e-12);
@@ -146,7 +148,8 @@ TEST(RegionShape, FarFromTheOriginKeepsItsDigits) {
 }
 
 TEST(RegionShape, SinglePixelAndEmptyRegion) {
-  const fa::RegionShape one = fa::region_shape(std::vector<fa::ShapeCell>{fa::pixel_cell(0.5, 0.5, 1.0)});
+  const fa::RegionShape one =
+      fa::region_shape(std::vector<fa::ShapeCell>{fa::pixel_cell(0.5, 0.5, 1.0)});
   EXPECT_DOUBLE_EQ(one.area, 1.0);
   EXPECT_DOUBLE_EQ(one.roundness, 1.0);
   EXPECT_DOUBLE_EQ(one.aspect_ratio, 1.0);
@@ -158,7 +161,7 @@ TEST(RegionShape, SparseLabelsBorderFlagsAndOrder) {
   cv::Mat labels = cv::Mat::zeros(20, 30, CV_32S);
   labels(cv::Rect(0, 5, 4, 4)).setTo(1000000);  // touches the left border
   labels(cv::Rect(10, 5, 3, 2)).setTo(5);
-  labels(cv::Rect(20, 16, 2, 4)).setTo(7);      // touches the bottom border
+  labels(cv::Rect(20, 16, 2, 4)).setTo(7);  // touches the bottom border
   const auto regions = fa::label_region_shapes(labels, 1.0);
   ASSERT_EQ(regions.size(), 3u);
   EXPECT_EQ(regions[0].label, 5);

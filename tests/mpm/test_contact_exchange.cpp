@@ -1,6 +1,7 @@
-// Node-level contact ([NBS18] §2.6-2.10): each friction law against its closed form at a single two-field
-// node in the stick and slide branches; momentum conservation; removal of approach; separating
-// fields; rigid walls; tensile adhesion (eq. (25)); friction work against the kinetic energy removed.
+// Node-level contact ([NBS18] §2.6-2.10): each friction law against its closed form at a single
+// two-field node in the stick and slide branches; momentum conservation; removal of approach;
+// separating fields; rigid walls; tensile adhesion (eq. (25)); friction work against the kinetic
+// energy removed.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -59,7 +60,8 @@ TEST(ContactExchange, CoulombSlideIsEq20AndStickIsCentreOfMass) {
   EXPECT_NEAR(ex.normal_impulse, normal_star, 1e-14);
   EXPECT_NEAR(ex.slip_speed, 2.0 - 0.3 * normal_star / m_red, 1e-14);
 
-  // Stick: d_t = 1.2·0.25 = 0.3 < 0.36 → both fields take the centre-of-mass velocity ([NBS18] eq. (12)-(13)).
+  // Stick: d_t = 1.2·0.25 = 0.3 < 0.36 → both fields take the centre-of-mass velocity ([NBS18] eq.
+  // (12)-(13)).
   const auto stuck_node = two_field_node(0.25);
   const auto stuck = run(stuck_node, law);
   ASSERT_TRUE(stuck.in_contact);
@@ -130,7 +132,8 @@ TEST(ContactExchange, TensileAdhesionFollowsEllipseEq25) {
   EXPECT_FALSE(held.sliding);
   EXPECT_NEAR((velocity_after_b(inside, held) - velocity_after_a(inside, held)).norm(), 0.0, 1e-14);
   EXPECT_NEAR(held.normal_impulse, -0.3, 1e-14);  // tensile
-  // Outside: (0.8)² + (0.4/0.5)² = 1.28 > 1 → the bond breaks and both fields keep their velocities.
+  // Outside: (0.8)² + (0.4/0.5)² = 1.28 > 1 → the bond breaks and both fields keep their
+  // velocities.
   const auto outside = separating(0.8, 0.4);
   const auto broken = run(outside, law);
   EXPECT_FALSE(broken.in_contact);
@@ -193,9 +196,9 @@ TEST(ContactExchange, ThermalSofteningIsEq15) {
 TEST(ContactExchange, ConservesMomentumAndRemovesApproachForEveryLaw) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const FrictionLaw laws[] = {CoulombFriction{0.3}, VelocityDependentFriction{0.2, 0.1},
-                              AdhesiveFriction{0.2, 1e5, 1e5}, SmoothStaticDynamicFriction{0.4, 0.2, 0.05},
-                              ThermalSofteningFriction{0.4, 300.0, 800.0}};
+  const FrictionLaw laws[] = {
+      CoulombFriction{0.3}, VelocityDependentFriction{0.2, 0.1}, AdhesiveFriction{0.2, 1e5, 1e5},
+      SmoothStaticDynamicFriction{0.4, 0.2, 0.05}, ThermalSofteningFriction{0.4, 300.0, 800.0}};
   int contacts = 0, slides = 0;
   for (const auto& law : laws)
     for (int trial = 0; trial < 400; ++trial) {
@@ -213,7 +216,8 @@ TEST(ContactExchange, ConservesMomentumAndRemovesApproachForEveryLaw) {
       const Vec<3> va = velocity_after_a(node, ex), vb = velocity_after_b(node, ex);
       const Vec<3> p0 = node.mass_a * node.velocity_a + node.mass_b * node.velocity_b;
       const Vec<3> p1 = node.mass_a * va + node.mass_b * vb;
-      const double scale = node.mass_a * node.velocity_a.norm() + node.mass_b * node.velocity_b.norm();
+      const double scale =
+          node.mass_a * node.velocity_a.norm() + node.mass_b * node.velocity_b.norm();
       EXPECT_LE((p1 - p0).norm(), 4.0 * std::numeric_limits<double>::epsilon() * scale);
       const double approach = (node.velocity_b - node.velocity_a).dot(node.normal);
       if (approach < 0.0) {
@@ -270,13 +274,14 @@ TEST(ContactExchange, RigidWallTakesTheFieldToTheWallVelocity) {
     EXPECT_TRUE(ex.momentum_change_a.allFinite());
     EXPECT_TRUE(std::isfinite(ex.friction_work));
     const Vec<2> va = velocity_after_a(node, ex);
-    EXPECT_NEAR(va.y(), 0.5, 1e-14);               // normal velocity = the wall's
-    EXPECT_NEAR(va.x(), 3.0 - 0.2 * 2.5, 1e-14);   // Δv_t = μ Δv_n
+    EXPECT_NEAR(va.y(), 0.5, 1e-14);              // normal velocity = the wall's
+    EXPECT_NEAR(va.x(), 3.0 - 0.2 * 2.5, 1e-14);  // Δv_t = μ Δv_n
     EXPECT_NEAR(ex.normal_impulse, 0.5 * 2.5, 1e-14);
     EXPECT_NEAR(ex.slip_speed, 1.5, 1e-14);
   }
   // Sticking to the wall: the field moves with it.
-  const auto stuck = exchange_momentum<2>(node, CoulombFriction{2.0}, dt, FrictionWorkOrder::second);
+  const auto stuck =
+      exchange_momentum<2>(node, CoulombFriction{2.0}, dt, FrictionWorkOrder::second);
   EXPECT_FALSE(stuck.sliding);
   EXPECT_NEAR((velocity_after_a(node, stuck) - node.velocity_b).norm(), 0.0, 1e-14);
 }
@@ -288,16 +293,19 @@ TEST(ContactExchange, SecondOrderWorkIsTheTangentialKineticEnergyRemovedWithoutF
   const CoulombFriction law{0.25};
   for (double approach : {1.0, 1e-2, 1e-4}) {
     ContactNode<2> node = two_field_node(2.0);
-    node.velocity_a = Vec<2>::Zero();  // a at rest so that the velocity differences carry no round-off
+    node.velocity_a =
+        Vec<2>::Zero();  // a at rest so that the velocity differences carry no round-off
     node.velocity_b = Vec<2>(2.0, -approach);  // the normal impulse shrinks like the step
     const double n_star = m_red * approach, s = 0.25 * n_star, d_t = m_red * 2.0;
-    // ½ m_red (v_t² − v′_t²) with v_t = d_t/m_red, v′_t = (d_t − s)/m_red, factored to avoid cancellation.
+    // ½ m_red (v_t² − v′_t²) with v_t = d_t/m_red, v′_t = (d_t − s)/m_red, factored to avoid
+    // cancellation.
     const double ke_loss = s * (2.0 * d_t - s) / (2.0 * m_red);
     const auto second = run(node, law, FrictionWorkOrder::second);
     const auto first = run(node, law, FrictionWorkOrder::first);
     ASSERT_TRUE(second.sliding);
     EXPECT_NEAR(second.friction_work, ke_loss, 1e-14 * ke_loss);
-    // Energy lost overall = normal (inelastic) loss + friction work, from the velocities themselves.
+    // Energy lost overall = normal (inelastic) loss + friction work, from the velocities
+    // themselves.
     const auto ke = [&](const Vec<2>& va, const Vec<2>& vb) {
       return 0.5 * node.mass_a * va.squaredNorm() + 0.5 * node.mass_b * vb.squaredNorm();
     };
@@ -332,13 +340,16 @@ TEST(ContactExchange, SecondOrderWorkClosesEnergyBalanceUnderConstantForces) {
   };
   const double friction_work = ke(va0, vb0) + force_work - normal_loss - ke(va1, vb1);
   EXPECT_NEAR(ex.friction_work, friction_work, 1e-12 * friction_work);
-  const auto first = exchange_momentum<2>(node, CoulombFriction{0.3}, step, FrictionWorkOrder::first);
-  EXPECT_GT(std::abs(first.friction_work - friction_work), 1e-3 * friction_work);  // first order is not exact
+  const auto first =
+      exchange_momentum<2>(node, CoulombFriction{0.3}, step, FrictionWorkOrder::first);
+  EXPECT_GT(std::abs(first.friction_work - friction_work),
+            1e-3 * friction_work);  // first order is not exact
 
   // Slip starting within the step (v⁰ reversed): eq. (36) = W₁²/(2W₂) with t_s of eq. (35).
   ContactNode<2> onset = node;
   onset.force_b = Vec<2>(9000.0, 0.0);
-  const auto late = exchange_momentum<2>(onset, CoulombFriction{0.3}, step, FrictionWorkOrder::second);
+  const auto late =
+      exchange_momentum<2>(onset, CoulombFriction{0.3}, step, FrictionWorkOrder::second);
   ASSERT_TRUE(late.sliding);
   const double s = late.momentum_change_a.x(), d_t = m_red * 2.0;
   const double f_t = (onset.mass_a * onset.force_b.x() - onset.mass_b * onset.force_a.x()) /
@@ -353,10 +364,12 @@ TEST(ContactExchange, SecondOrderWorkClosesEnergyBalanceUnderConstantForces) {
 
 TEST(ContactExchange, ContactAreaSumsToTheNodeSpacingAcrossAStraightInterface) {
   // Interface parallel to the grid at height y₀ between nodes at y = 0 and y = h, material a below:
-  // with bilinear weights Ω_b(node 0) = h (h − y₀)²/(2h) and Ω_a(node h) = h y₀²/(2h) ([NBS18] eq. (5)).
+  // with bilinear weights Ω_b(node 0) = h (h − y₀)²/(2h) and Ω_a(node h) = h y₀²/(2h) ([NBS18] eq.
+  // (5)).
   const double h = 2e-3, t = 1e-3;
   for (double y0 : {0.0, 0.3e-3, 1.0e-3, 1.7e-3}) {
-    const double lower = contact_area_2d(h * h, h * h - 0.5 * (h - y0) * (h - y0), 0.5 * (h - y0) * (h - y0), h, t);
+    const double lower =
+        contact_area_2d(h * h, h * h - 0.5 * (h - y0) * (h - y0), 0.5 * (h - y0) * (h - y0), h, t);
     const double upper = contact_area_2d(h * h, 0.5 * y0 * y0, h * h - 0.5 * y0 * y0, h, t);
     EXPECT_NEAR(lower + upper, h * t, 1e-15);
   }
@@ -368,9 +381,9 @@ TEST(ContactExchange, ContactAreaSumsToTheNodeSpacingAcrossAStraightInterface) {
 
 namespace {
 
-/// Ω_j and g_j ([NBS18] eq. (5)-(6)) of node (0, 0) with bilinear hats of spacing h for the field occupying
-/// the rectangle [x0, x1] × [y0, y1], by the midpoint rule on n × n tiles per cell (the exact
-/// Σ S_ip V_p, Σ G_ip V_p of a CPDI/GIMP tiling in the limit).
+/// Ω_j and g_j ([NBS18] eq. (5)-(6)) of node (0, 0) with bilinear hats of spacing h for the field
+/// occupying the rectangle [x0, x1] × [y0, y1], by the midpoint rule on n × n tiles per cell (the
+/// exact Σ S_ip V_p, Σ G_ip V_p of a CPDI/GIMP tiling in the limit).
 struct FieldIntegrals {
   double volume = 0.0;
   Vec<2> gradient = Vec<2>::Zero();
@@ -382,7 +395,8 @@ FieldIntegrals integrate_field(double h, double x0, double x1, double y0, double
     for (double y = std::max(y0, -h) + 0.5 * s; y < std::min(y1, h); y += s) {
       const double wx = 1.0 - std::abs(x) / h, wy = 1.0 - std::abs(y) / h;
       out.volume += wx * wy * s * s;
-      out.gradient += Vec<2>(-std::copysign(1.0, x) / h * wy, -std::copysign(1.0, y) / h * wx) * s * s;
+      out.gradient +=
+          Vec<2>(-std::copysign(1.0, x) / h * wy, -std::copysign(1.0, y) / h * wx) * s * s;
     }
   return out;
 }
@@ -395,7 +409,8 @@ TEST(ContactExchange, AreaFromDomainGradientsIsExactWhereTheInterfaceEnds) {
   // Straight interface at y₀ = 0.3 h across the whole support: hat-weighted length h − y₀;
   // eq. (11) and the gradient form agree.
   {
-    const auto a = integrate_field(h, -2, 2, -2, 0.3, 400), b = integrate_field(h, -2, 2, 0.3, 2, 400);
+    const auto a = integrate_field(h, -2, 2, -2, 0.3, 400),
+               b = integrate_field(h, -2, 2, 0.3, 2, 400);
     const double exact = 0.7;
     EXPECT_NEAR(contact_area_2d(a.volume + b.volume, a.volume, b.volume, h, t), exact, 1e-4);
     EXPECT_NEAR(contact_area_from_gradients<2>(a.gradient, b.gradient, n), exact, 1e-4);
@@ -404,7 +419,8 @@ TEST(ContactExchange, AreaFromDomainGradientsIsExactWhereTheInterfaceEnds) {
   // hat-weighted length is ∫_{−h}^{0.25h} (1 − |x|/h) dx = 0.5 + 0.25 − 0.25²/2 = 0.71875 h.
   // Eq. 11 over-estimates it; the gradient form is exact.
   {
-    const auto a = integrate_field(h, -2, 2, -2, 0.0, 400), b = integrate_field(h, -2, 0.25, 0.0, 2, 400);
+    const auto a = integrate_field(h, -2, 2, -2, 0.0, 400),
+               b = integrate_field(h, -2, 0.25, 0.0, 2, 400);
     const double exact = 0.71875, f = exact / h;
     EXPECT_NEAR(contact_area_from_gradients<2>(a.gradient, b.gradient, n), exact, 1e-4);
     const double eq11 = contact_area_2d(a.volume + b.volume, a.volume, b.volume, h, t);

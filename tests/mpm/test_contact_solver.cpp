@@ -47,18 +47,22 @@ radius = "5 mm"
 velocity = ["-10 m/s", "-2 m/s"]
 [contact]
 friction = 0.0
-partitioning = ")" + partitioning + R"("
+partitioning = ")" +
+         partitioning + R"("
 [stop]
 end_time = "90 us"
 )";
 }
 
 struct CollisionOutcome {
-  double deepest_penetration = -std::numeric_limits<double>::infinity();  ///< largest crossing of the mid-plane by either disk [m]
-  double largest_momentum = 0.0;     ///< max |Σ m v| over the run [kg m/s per m]
-  double momentum_scale = 0.0;       ///< Σ m |v| at the start
-  double final_left_velocity = 0.0;  ///< centre-of-mass x-velocity of the left disk at the end [m/s]
-  double final_left_sliding = 0.0;   ///< its y-velocity at the end (2 m/s at the start) [m/s]
+  double deepest_penetration =
+      -std::numeric_limits<double>::infinity();  ///< largest crossing of the mid-plane by either
+                                                 ///< disk [m]
+  double largest_momentum = 0.0;                 ///< max |Σ m v| over the run [kg m/s per m]
+  double momentum_scale = 0.0;                   ///< Σ m |v| at the start
+  double final_left_velocity =
+      0.0;                          ///< centre-of-mass x-velocity of the left disk at the end [m/s]
+  double final_left_sliding = 0.0;  ///< its y-velocity at the end (2 m/s at the start) [m/s]
 };
 
 CollisionOutcome collide(const std::string& partitioning) {

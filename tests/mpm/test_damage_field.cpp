@@ -1,5 +1,5 @@
-// Kernel damage field and DFG partitioning rules ([HH17] eq. (17)-(19), Alg. 1-2; [XLS21] eq. (67)-(69)), and the
-// Verlet neighbour lists they run on.
+// Kernel damage field and DFG partitioning rules ([HH17] eq. (17)-(19), Alg. 1-2; [XLS21] eq.
+// (67)-(69)), and the Verlet neighbour lists they run on.
 //
 // Exact answers used: on a square (cubic) lattice the neighbourhood of an interior particle is
 // symmetric under inversion and 90° rotations, so Σ ω r = 0 and Σ (1 − r̄) r ⊗ r ∝ I; for a linear

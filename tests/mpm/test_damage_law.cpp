@@ -1,6 +1,7 @@
-// Damage laws against their closed forms: Rankine linear softening ([XLS21] eq. (19)-(21)) along uniaxial
-// tension, the fracture energy of one softening element, the snap-back limit, degradation of the
-// stress ([HH17] eq. (26)-(27); [XLS21] eq. (7)), time to failure ([HH17] eq. (24)) and Weibull strengths ([HH17] eq. (25)).
+// Damage laws against their closed forms: Rankine linear softening ([XLS21] eq. (19)-(21)) along
+// uniaxial tension, the fracture energy of one softening element, the snap-back limit, degradation
+// of the stress ([HH17] eq. (26)-(27); [XLS21] eq. (7)), time to failure ([HH17] eq. (24)) and
+// Weibull strengths ([HH17] eq. (25)).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,10 +22,12 @@ mpm::NeoHookean glass() {
   return {kE / (3.0 * (1.0 - 2.0 * kNu)), kE / (2.0 * (1.0 + kNu))};
 }
 
-mpm::RankineSoftening rankine() { return {kGf, kE}; }
+mpm::RankineSoftening rankine() {
+  return {kGf, kE};
+}
 
-/// Uniaxial stress in 3D: F = diag(1 + ε, λ, λ) with λ chosen (Newton) so that the lateral stress of
-/// the undamaged material vanishes. Damage does not move the lateral stress off zero (a zero
+/// Uniaxial stress in 3D: F = diag(1 + ε, λ, λ) with λ chosen (Newton) so that the lateral stress
+/// of the undamaged material vanishes. Damage does not move the lateral stress off zero (a zero
 /// principal stress is neither scaled nor kept differently), so this is also the damaged path.
 mpm::Mat<3> uniaxial_F(const mpm::NeoHookean& m, double strain) {
   double lambda = 1.0 - kNu * strain;
@@ -52,7 +55,8 @@ mpm::Mat<3> uniaxial_F(const mpm::NeoHookean& m, double strain) {
 TEST(DamageLaw, SofteningModulusAndSnapBackLimit) {
   const double Hbar = kStrength * kStrength / (2.0 * kE * kGf);  // [XLS21] eq. (21): 1785.7 1/m
   const double l = 0.4e-3;
-  EXPECT_NEAR(mpm::rankine_softening_modulus(kStrength, rankine(), l), Hbar * l / (1.0 - Hbar * l), 1e-12);
+  EXPECT_NEAR(mpm::rankine_softening_modulus(kStrength, rankine(), l), Hbar * l / (1.0 - Hbar * l),
+              1e-12);
 
   // Largest characteristic length: H̄ l_ch = 1 → l_ch = 2 E G_f / σ_f² (0.56 mm for this glass).
   const double l_max = mpm::rankine_largest_characteristic_length(kStrength, rankine());
@@ -85,10 +89,12 @@ TEST(DamageLaw, RankineFollowsEquation20AlongUniaxialTensionAndSoftensLinearly) 
     EXPECT_NEAR(damage, d_expected, 1e-12) << "eps = " << eps;
     EXPECT_NEAR(history, s1, 1e-9 * s1);
 
-    const double stress = mpm::degrade_stress<3>(trial, damage, mpm::Degradation::tensile_spectral)(0, 0);
-    // Linear elastic up to ε_f, then the straight line from (ε_f, σ_f) to (ε_u, 0); the neo-Hookean's
-    // finite-strain curvature at ε ~ 1e-3 is within 0.3 % of σ_f.
-    const double linear = eps <= eps_f ? kE * eps : std::max(0.0, kStrength * (eps_u - eps) / (eps_u - eps_f));
+    const double stress =
+        mpm::degrade_stress<3>(trial, damage, mpm::Degradation::tensile_spectral)(0, 0);
+    // Linear elastic up to ε_f, then the straight line from (ε_f, σ_f) to (ε_u, 0); the
+    // neo-Hookean's finite-strain curvature at ε ~ 1e-3 is within 0.3 % of σ_f.
+    const double linear =
+        eps <= eps_f ? kE * eps : std::max(0.0, kStrength * (eps_u - eps) / (eps_u - eps_f));
     EXPECT_NEAR(stress, linear, 3e-3 * kStrength) << "eps = " << eps;
     if (eps > eps_f) {
       EXPECT_LE(stress, last_stress + 1e-9 * kStrength);  // softening branch only falls
@@ -100,15 +106,16 @@ TEST(DamageLaw, RankineFollowsEquation20AlongUniaxialTensionAndSoftensLinearly) 
 }
 
 TEST(DamageLaw, OneSofteningElementDissipatesFractureEnergyTimesArea) {
-  // A bar element of length l_ch (one particle of the crack band) and cross-section A pulled until it fails
-  // dissipates G_f A: Σ Δd ψ_t V with V = l_ch A.
+  // A bar element of length l_ch (one particle of the crack band) and cross-section A pulled until
+  // it fails dissipates G_f A: Σ Δd ψ_t V with V = l_ch A.
   const mpm::NeoHookean m = glass();
   const double area = 2.5e-6;  // m²
   for (const double h : {0.1e-3, 0.2e-3, 0.3e-3}) {
     const double l = h * std::sqrt(3.0);
     const double Hs = mpm::rankine_softening_modulus(kStrength, rankine(), l);
     const double eps_u = kStrength * (1.0 + Hs) / (kE * Hs);
-    for (const mpm::Degradation deg : {mpm::Degradation::tensile_spectral, mpm::Degradation::isotropic}) {
+    for (const mpm::Degradation deg :
+         {mpm::Degradation::tensile_spectral, mpm::Degradation::isotropic}) {
       double history = 0.0, damage = 0.0, dissipated = 0.0, work = 0.0;
       double prev_eps = 0.0, prev_stress = 0.0;
       const int n = 20000;
@@ -117,10 +124,12 @@ TEST(DamageLaw, OneSofteningElementDissipatesFractureEnergyTimesArea) {
         const mpm::Mat<3> F = uniaxial_F(m, eps);
         const double d_old = damage;
         mpm::update_damage<3>(rankine(), m.cauchy<3>(F), kStrength, l, 1e-8, history, damage);
-        // ψ_t at the end of the increment: the energy released at fixed strain (first order in 1/n).
+        // ψ_t at the end of the increment: the energy released at fixed strain (first order in
+        // 1/n).
         dissipated += (damage - d_old) * mpm::degradable_energy<3>(m, F, deg);
         // Work per reference volume by the trapezoidal rule on the nominal stress P = J σ F⁻ᵀ.
-        const mpm::Mat<3> P = F.determinant() * mpm::degrade_stress<3>(m.cauchy<3>(F), damage, deg) *
+        const mpm::Mat<3> P = F.determinant() *
+                              mpm::degrade_stress<3>(m.cauchy<3>(F), damage, deg) *
                               F.inverse().transpose();
         work += 0.5 * (P(0, 0) + prev_stress) * (eps - prev_eps);
         prev_eps = eps;
@@ -158,7 +167,8 @@ TEST(DamageLaw, DamageNeverHealsAndNoDamageIsInert) {
   mpm::update_damage<2>(rankine(), s, kStrength, l, 1e-8, history, damage);
   const double d1 = damage;
   EXPECT_GT(d1, 0.0);
-  mpm::update_damage<2>(rankine(), mpm::Mat<2>(-s), kStrength, l, 1e-8, history, damage);  // unload to compression
+  mpm::update_damage<2>(rankine(), mpm::Mat<2>(-s), kStrength, l, 1e-8, history,
+                        damage);  // unload to compression
   EXPECT_EQ(damage, d1);
   EXPECT_EQ(history, 1.2 * kStrength);
 
@@ -191,20 +201,29 @@ TEST(DamageLaw, SpectralDegradationKeepsCompressionAndRemovesTension) {
 
   // Fully damaged: the tension is gone, the compression is unchanged.
   const mpm::Mat<2> full = mpm::degrade_stress<2>(sigma, 1.0, mpm::Degradation::tensile_spectral);
-  const mpm::Mat<2> compressive_only = Q * (mpm::Vec<2>() << 0.0, -80e6).finished().asDiagonal() * Q.transpose();
+  const mpm::Mat<2> compressive_only =
+      Q * (mpm::Vec<2>() << 0.0, -80e6).finished().asDiagonal() * Q.transpose();
   EXPECT_LT((full - compressive_only).norm(), 1e-6 * 80e6);
   // Half damaged: the tensile principal value is halved.
   const mpm::Mat<2> half = mpm::degrade_stress<2>(sigma, 0.5, mpm::Degradation::tensile_spectral);
-  EXPECT_LT((half - Q * (mpm::Vec<2>() << 15e6, -80e6).finished().asDiagonal() * Q.transpose()).norm(), 1e-6 * 80e6);
+  EXPECT_LT(
+      (half - Q * (mpm::Vec<2>() << 15e6, -80e6).finished().asDiagonal() * Q.transpose()).norm(),
+      1e-6 * 80e6);
   // Pure compression survives full damage untouched; pure tension vanishes.
   const mpm::Mat<3> pressure = -100e6 * mpm::Mat<3>::Identity();
-  EXPECT_LT((mpm::degrade_stress<3>(pressure, 1.0, mpm::Degradation::tensile_spectral) - pressure).norm(), 1e-6);
-  EXPECT_LT(mpm::degrade_stress<3>(mpm::Mat<3>(-pressure), 1.0, mpm::Degradation::tensile_spectral).norm(), 1e-6);
+  EXPECT_LT(
+      (mpm::degrade_stress<3>(pressure, 1.0, mpm::Degradation::tensile_spectral) - pressure).norm(),
+      1e-6);
+  EXPECT_LT(mpm::degrade_stress<3>(mpm::Mat<3>(-pressure), 1.0, mpm::Degradation::tensile_spectral)
+                .norm(),
+            1e-6);
   // Undamaged: unchanged.
   EXPECT_EQ(mpm::degrade_stress<2>(sigma, 0.0, mpm::Degradation::tensile_spectral), sigma);
 
   // Isotropic ([XLS21] eq. (7)) scales everything, compression included.
-  EXPECT_LT((mpm::degrade_stress<2>(sigma, 0.25, mpm::Degradation::isotropic) - 0.75 * sigma).norm(), 1e-9);
+  EXPECT_LT(
+      (mpm::degrade_stress<2>(sigma, 0.25, mpm::Degradation::isotropic) - 0.75 * sigma).norm(),
+      1e-9);
   EXPECT_LT(mpm::degrade_stress<2>(sigma, 1.0, mpm::Degradation::isotropic).norm(), 1e-9);
 }
 
@@ -213,15 +232,18 @@ TEST(DamageLaw, DegradableEnergyIsTheTensileShare) {
   // Pure compression: nothing to degrade spectrally; isotropic degrades all of ψ.
   const mpm::Mat<2> squeeze = 0.999 * mpm::Mat<2>::Identity();
   EXPECT_EQ(mpm::degradable_energy<2>(m, squeeze, mpm::Degradation::tensile_spectral), 0.0);
-  EXPECT_DOUBLE_EQ(mpm::degradable_energy<2>(m, squeeze, mpm::Degradation::isotropic), m.energy_density<2>(squeeze));
+  EXPECT_DOUBLE_EQ(mpm::degradable_energy<2>(m, squeeze, mpm::Degradation::isotropic),
+                   m.energy_density<2>(squeeze));
   // Equibiaxial tension in 3D: everything is tensile, ψ_t = ½ τ : ln V = ψ to O(ε).
   const mpm::Mat<3> stretch = 1.001 * mpm::Mat<3>::Identity();
   const double psi = m.energy_density<3>(stretch);
-  EXPECT_NEAR(mpm::degradable_energy<3>(m, stretch, mpm::Degradation::tensile_spectral), psi, 3e-3 * psi);
+  EXPECT_NEAR(mpm::degradable_energy<3>(m, stretch, mpm::Degradation::tensile_spectral), psi,
+              3e-3 * psi);
   // Uniaxial stress: ψ_t = ½ σ₁ ε₁ = ψ (the lateral stresses vanish).
   const mpm::Mat<3> F = uniaxial_F(m, 1e-3);
   const double psi_u = m.energy_density<3>(F);
-  EXPECT_NEAR(mpm::degradable_energy<3>(m, F, mpm::Degradation::tensile_spectral), psi_u, 3e-3 * psi_u);
+  EXPECT_NEAR(mpm::degradable_energy<3>(m, F, mpm::Degradation::tensile_spectral), psi_u,
+              3e-3 * psi_u);
   // Plane strain, rotated uniaxial stretch: only the in-plane tensile direction contributes
   // ½ τ₁ ln λ₁ (λ₃ = 1), independent of the rotation.
   const double c = std::cos(0.3), s = std::sin(0.3);
@@ -230,10 +252,11 @@ TEST(DamageLaw, DegradableEnergyIsTheTensileShare) {
   const mpm::Mat<2> U = (mpm::Vec<2>() << 1.002, 1.0).finished().asDiagonal();
   const double tau1 = m.kirchhoff<2>(U)(0, 0);
   ASSERT_GT(tau1, 0.0);
-  ASSERT_GT(m.kirchhoff<2>(U)(1, 1), 0.0);  // lateral Kirchhoff stress of uniaxial strain is tensile too
+  ASSERT_GT(m.kirchhoff<2>(U)(1, 1),
+            0.0);  // lateral Kirchhoff stress of uniaxial strain is tensile too
   const double expected = 0.5 * tau1 * std::log(1.002);  // ln λ₂ = ln λ₃ = 0
-  EXPECT_NEAR(mpm::degradable_energy<2>(m, mpm::Mat<2>(Q * U), mpm::Degradation::tensile_spectral), expected,
-              1e-9 * expected);
+  EXPECT_NEAR(mpm::degradable_energy<2>(m, mpm::Mat<2>(Q * U), mpm::Degradation::tensile_spectral),
+              expected, 1e-9 * expected);
 }
 
 TEST(DamageLaw, TimeToFailureReachesOneAfterExactlyTauOverDtSteps) {
@@ -305,7 +328,8 @@ TEST(DamageLaw, WeibullMedianSizeEffectAndSeed) {
   const std::vector<double> s_big = mpm::weibull_strengths(big, w, 3);
   EXPECT_NEAR(median(s_big), median_expected * std::pow(8.0, -1.0 / 6.0), 4.0 * se);
   // With the same seed the draws are the same ℛ, so every strength scales exactly by 8^{-1/m}.
-  for (std::size_t k = 0; k < 100; ++k) EXPECT_NEAR(s_big[k], s[k] * std::pow(8.0, -1.0 / 6.0), 1e-9 * s[k]);
+  for (std::size_t k = 0; k < 100; ++k)
+    EXPECT_NEAR(s_big[k], s[k] * std::pow(8.0, -1.0 / 6.0), 1e-9 * s[k]);
 }
 
 // The solver's one-eigen-solve update equals degrade_stress and degradable_energy taken
@@ -317,7 +341,8 @@ TEST(DamageLaw, OneSpectralDecompositionGivesBothDegradedStressAndDegradableEner
   for (double pressure : pressures)
     for (int k = 0; k < 50; ++k) {
       mpm::Mat<2> F;
-      const double a = 0.002 * std::sin(1.3 * k), b = 0.0015 * std::cos(0.7 * k), s = 0.001 * std::sin(2.1 * k);
+      const double a = 0.002 * std::sin(1.3 * k), b = 0.0015 * std::cos(0.7 * k),
+                   s = 0.001 * std::sin(2.1 * k);
       F << 1.0 + a, s, 0.5 * s, 1.0 + b;
       const mpm::Mat<2> trial = m.cauchy<2>(F) + pressure * mpm::Mat<2>::Identity();
       const double psi = m.energy_density<2>(F);

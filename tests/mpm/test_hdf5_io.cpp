@@ -1,10 +1,9 @@
 // The HDF5 layer: typed datasets of any rank, extendible datasets, attributes, links, errors.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-
-#include <unistd.h>
 
 #include "fragmpm/mpm/hdf5_io.hpp"
 
@@ -55,7 +54,8 @@ TEST(Hdf5Io, DatasetsOfEveryTypeAndRank) {
   EXPECT_TRUE(file.root().is_group("a/b"));
   EXPECT_TRUE(file.root().is_dataset("a/b/c/u8"));
   EXPECT_FALSE(file.root().is_dataset("a/b"));
-  EXPECT_EQ(g.children(), (std::vector<std::string>{"d", "empty", "f", "i32", "i64", "scalar", "u8"}));
+  EXPECT_EQ(g.children(),
+            (std::vector<std::string>{"d", "empty", "f", "i32", "i64", "scalar", "u8"}));
   EXPECT_EQ(g.open_dataset("d").object_path(), "/a/b/c/d");
 
   // Integers widen to double on read; doubles are not silently truncated to integers.
@@ -78,7 +78,8 @@ TEST(Hdf5Io, ExtendibleDatasets) {
   const Dataset ds = file.root().create_extendible<double>("series/force", {2}, 4);
   EXPECT_EQ(ds.dims(), (Dims{0, 2}));
   ds.append_rows(std::vector<double>{1, 2, 3, 4, 5, 6});  // 3 rows
-  ds.append_rows(std::vector<double>{7, 8, 9, 10, 11, 12, 13, 14, 15, 16});  // 5 rows, across chunks
+  ds.append_rows(
+      std::vector<double>{7, 8, 9, 10, 11, 12, 13, 14, 15, 16});  // 5 rows, across chunks
   EXPECT_EQ(ds.rows(), 8u);
   ds.set_rows(2);
   EXPECT_EQ(file.root().read<double>("series/force").values, (std::vector<double>{1, 2, 3, 4}));
@@ -86,7 +87,8 @@ TEST(Hdf5Io, ExtendibleDatasets) {
 
   const Dataset steps = file.root().create_extendible<std::int64_t>("series/step", {});
   steps.append_rows(std::vector<std::int64_t>{5, 6, 7});
-  EXPECT_EQ(file.root().read<std::int64_t>("series/step").values, (std::vector<std::int64_t>{5, 6, 7}));
+  EXPECT_EQ(file.root().read<std::int64_t>("series/step").values,
+            (std::vector<std::int64_t>{5, 6, 7}));
   // A contiguous dataset cannot be extended.
   const Dataset fixed = file.root().write<double>("fixed", std::vector<double>{1, 2}, {2});
   EXPECT_THROW(fixed.set_rows(5), RunFileError);

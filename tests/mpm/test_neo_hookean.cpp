@@ -1,5 +1,5 @@
-// Neo-Hookean ([XLS21] eq. (16)-(17), plane strain): zero stress at F = I, objectivity, and the Kirchhoff
-// stress equal to the finite-difference derivative of the energy, τ = (∂ψ/∂F) Fᵀ.
+// Neo-Hookean ([XLS21] eq. (16)-(17), plane strain): zero stress at F = I, objectivity, and the
+// Kirchhoff stress equal to the finite-difference derivative of the energy, τ = (∂ψ/∂F) Fᵀ.
 #include <gtest/gtest.h>
 
 #include <cmath>

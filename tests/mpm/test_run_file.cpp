@@ -1,13 +1,12 @@
 // Run file (docs/design.md): exact round trips of frames and checkpoints, series truncation, XDMF.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
-
-#include <unistd.h>
 
 #include "fragmpm/mpm/run_file.hpp"
 
@@ -27,8 +26,8 @@ std::string temp_path(const std::string& name) {
     }
   };
   static Cleanup cleanup;
-  const std::string path = ::testing::TempDir() + "fragmpm_run_file_" + std::to_string(getpid()) + "_" +
-                           name + ".h5";
+  const std::string path =
+      ::testing::TempDir() + "fragmpm_run_file_" + std::to_string(getpid()) + "_" + name + ".h5";
   std::filesystem::remove(path);
   std::filesystem::remove(std::filesystem::path(path).replace_extension(".xmf"));
   cleanup.paths.push_back(path);
@@ -63,7 +62,8 @@ RunMeta test_meta() {
   RunMeta meta;
   meta.scene_path = "scenes/test.toml";
   meta.scene_text = "# a scene\n[time]\nend = \"1 ms\"  # μs and — survive as UTF-8\n";
-  meta.modules = {{"elastic", true, "always"}, {"damage", false, "no material has a strength"},
+  meta.modules = {{"elastic", true, "always"},
+                  {"damage", false, "no material has a strength"},
                   {"thermal", false, ""}};
   meta.wall_names = {"top", "bottom"};
   return meta;
@@ -100,7 +100,8 @@ bool balanced_xml(const std::string& text, std::string* error) {
     pos = end + 1;
     if (tag.empty() || tag[0] == '?' || tag[0] == '!') continue;
     if (tag[0] == '/') {
-      if (open.empty() || open.back() != tag.substr(1)) return *error = "unexpected </" + tag.substr(1) + ">", false;
+      if (open.empty() || open.back() != tag.substr(1))
+        return *error = "unexpected </" + tag.substr(1) + ">", false;
       open.pop_back();
       continue;
     }
@@ -113,7 +114,8 @@ bool balanced_xml(const std::string& text, std::string* error) {
 
 std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;
-  for (std::size_t pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
+  for (std::size_t pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1))
+    ++n;
   return n;
 }
 
@@ -272,8 +274,10 @@ TEST(RunFile, SeriesAppendAndTruncate) {
     run.write_frame(4, 4e-3, random_particles(4, false, 7), {});
     EXPECT_EQ(read_series(path, "step"), (std::vector<double>{1, 2, 3, 4, 5}));
     EXPECT_EQ(read_series(path, "kinetic"), (std::vector<double>{10, 20, 30, 40, 50}));
-    EXPECT_EQ(read_series(path, "momentum"), (std::vector<double>{1, -1, 2, -2, 3, -3, 4, -4, 5, -5}));
-    EXPECT_EQ(read_series(path, "wall_top_force"), (std::vector<double>{0, 100, 0, 200, 0, 300, 0, 400, 0, 500}));
+    EXPECT_EQ(read_series(path, "momentum"),
+              (std::vector<double>{1, -1, 2, -2, 3, -3, 4, -4, 5, -5}));
+    EXPECT_EQ(read_series(path, "wall_top_force"),
+              (std::vector<double>{0, 100, 0, 200, 0, 300, 0, 400, 0, 500}));
     EXPECT_EQ(read_series(path, "wall_bottom_force").size(), 10u);
     EXPECT_EQ(read_series(path, "wall_bottom_displacement").size(), 10u);
     EXPECT_EQ(read_series(path, "wall_work"), (std::vector<double>{2, 4, 6, 8, 10}));
@@ -379,11 +383,13 @@ TEST(RunFile, XdmfDescribesEveryFrame) {
   ASSERT_TRUE(std::filesystem::exists(xmf));
   std::string error;
   EXPECT_TRUE(balanced_xml(read_text(xmf), &error)) << error;
-  for (int k = 0; k < 3; ++k) run.write_frame(10 * k, 0.1 * k, random_particles(6, true, 10 + k), {});
+  for (int k = 0; k < 3; ++k)
+    run.write_frame(10 * k, 0.1 * k, random_particles(6, true, 10 + k), {});
   const std::string text = read_text(xmf);
   EXPECT_TRUE(balanced_xml(text, &error)) << error;
   for (const char* frame : {"000000", "000001", "000002"})
-    EXPECT_NE(text.find(name + ":/frames/" + std::string(frame) + "/x"), std::string::npos) << frame;
+    EXPECT_NE(text.find(name + ":/frames/" + std::string(frame) + "/x"), std::string::npos)
+        << frame;
   EXPECT_EQ(count(text, "<Time "), 3u);
   EXPECT_EQ(count(text, "GeometryType=\"XY\""), 3u);
   EXPECT_EQ(count(text, "Dimensions=\"6 2\""), 3u);       // x

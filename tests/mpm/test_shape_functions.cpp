@@ -1,6 +1,7 @@
 // Shape-function invariants: partition of unity, zero-sum gradients (a constant field has zero
 // gradient), exact gradient of a linear field, and CPDI = linear for an undeformed particle inside
-// one cell (the bilinear hat averaged over a centred box equals its centre value, [XLS21] eq. (52)-(53)).
+// one cell (the bilinear hat averaged over a centred box equals its centre value, [XLS21] eq.
+// (52)-(53)).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -95,7 +96,7 @@ TEST(ShapeFunctions, CpdiPartitionOfUnityForDeformedDomains) {
 TEST(ShapeFunctions, CpdiEqualsLinearForUndeformedParticleInsideOneCell) {
   const auto g = test_grid();
   const Vec<2> x = g.origin + Vec<2>(0.25 * 3.4, 0.25 * 5.6);  // well inside cell (3, 5)
-  Mat<2> domain = Mat<2>::Identity() * 0.25 / 4.0;              // 4×4 particles per cell
+  Mat<2> domain = Mat<2>::Identity() * 0.25 / 4.0;             // 4×4 particles per cell
   Stencil<2> cpdi, linear;
   cpdi_stencil<2>(x, domain, g, cpdi);
   linear_stencil<2>(x, g, linear);
@@ -113,8 +114,8 @@ TEST(ShapeFunctions, CpdiEqualsLinearForUndeformedParticleInsideOneCell) {
 }
 
 TEST(ShapeFunctions, CpdiGradientMatchesPaperEquation53) {
-  // [XLS21] eq. (53) written out with full edge vectors: corners x1 = x − r1/2 − r2/2, x2 = x + r1/2 −
-  // r2/2, x3 = x + r1/2 + r2/2, x4 = x − r1/2 + r2/2.
+  // [XLS21] eq. (53) written out with full edge vectors: corners x1 = x − r1/2 − r2/2, x2 = x +
+  // r1/2 − r2/2, x3 = x + r1/2 + r2/2, x4 = x − r1/2 + r2/2.
   const auto g = test_grid();
   const Vec<2> x(0.61, 0.83);
   const Vec<2> r1(0.11, 0.03), r2(-0.02, 0.09);
@@ -128,7 +129,8 @@ TEST(ShapeFunctions, CpdiGradientMatchesPaperEquation53) {
                              x - r1 / 2 + r2 / 2};
   auto hat = [&](const IVec<2>& node, const Vec<2>& at) {
     const Vec<2> X = g.position(node);
-    return std::max(0.0, 1 - std::abs(at[0] - X[0]) / 0.25) * std::max(0.0, 1 - std::abs(at[1] - X[1]) / 0.25);
+    return std::max(0.0, 1 - std::abs(at[0] - X[0]) / 0.25) *
+           std::max(0.0, 1 - std::abs(at[1] - X[1]) / 0.25);
   };
   for (int e = 0; e < s.count; ++e) {
     const IVec<2> node = g.global(s.node[e]);

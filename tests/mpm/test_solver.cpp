@@ -120,8 +120,8 @@ TEST(Solver, EnergyConservedInFreeElasticVibration) {
   // plane-strain block), v_x = v0 cos(πx/L), resolved by 20 cells
   // (h = 0.5 mm), pure FLIP, CFL 0.3, six periods (T = 2L/c ≈ 10 μs). Explicit symplectic stepping
   // makes kinetic + strain oscillate by O(ω Δt); it must not drift. Measured: last-period mean
-  // 1.8 % below E0 (MPM's numerical dissipation at 20 cells per half wavelength). (At h = 1 mm the same mode loses 15 % in six periods:
-  // MPM's numerical dissipation of under-resolved modes.)
+  // 1.8 % below E0 (MPM's numerical dissipation at 20 cells per half wavelength). (At h = 1 mm the
+  // same mode loses 15 % in six periods: MPM's numerical dissipation of under-resolved modes.)
   std::string text = block_scene;
   text.replace(text.find("\"1 mm\""), 6, "\"0.5 mm\"");
   const std::string drift = "velocity = [\"3 m/s\", \"-2 m/s\"]";
@@ -129,7 +129,8 @@ TEST(Solver, EnergyConservedInFreeElasticVibration) {
   text.replace(text.find("nu = 0.3"), 8, "nu = 0.0");
   auto problem = pipeline::parse_scene(text, "vibration.toml");
   for (std::size_t p = 0; p < problem.particles.size(); ++p)
-    problem.particles.v[p] = Vec<2>(std::cos(std::numbers::pi * problem.particles.x[p][0] / 0.01), 0.0);
+    problem.particles.v[p] =
+        Vec<2>(std::cos(std::numbers::pi * problem.particles.x[p][0] / 0.01), 0.0);
   mpm::Solver<2> solver(std::move(problem));
   const double e0 = solver.last_row().kinetic + solver.last_row().strain;
   const double period = 1e-5;
@@ -216,10 +217,10 @@ TEST(Solver, InvertedParticleStopsWithDiagnostic) {
 
 TEST(Solver, RetreatingFixedWallPullsTheMaterialAlong) {
   // A fixed wall glued to the left end of a steel strip moves away at v = 1 m/s; rollers on the
-  // long faces make the strain uniaxial. The wall holds the end nodes (bilateral), so a tension wave
-  // σ = ρ c v with c = √((K + 4G/3)/ρ) runs into the strip, and the wall feels F = ρ c v H per unit
-  // thickness until the wave returns from the far end (2 L / c = 13.6 µs). A wall that let go of the
-  // nodes it had held would feel nothing.
+  // long faces make the strain uniaxial. The wall holds the end nodes (bilateral), so a tension
+  // wave σ = ρ c v with c = √((K + 4G/3)/ρ) runs into the strip, and the wall feels F = ρ c v H per
+  // unit thickness until the wave returns from the far end (2 L / c = 13.6 µs). A wall that let go
+  // of the nodes it had held would feel nothing.
   const char* strip = R"(
 [grid]
 cell_size = "1 mm"

@@ -82,7 +82,8 @@ TEST(ThermalPhysics, ThermalStressVanishesAtTheReferenceTemperatureAndIsAPressur
   const double K = 50e9, alpha = 1e-5;
   EXPECT_EQ(mpm::thermal_kirchhoff_pressure(K, alpha, 300.0, 300.0, 0.97), 0.0);
   // J = 1: τ_θ = −3αK(θ − θ₀): heating a clamped body puts it in compression.
-  EXPECT_DOUBLE_EQ(mpm::thermal_kirchhoff_pressure(K, alpha, 310.0, 300.0, 1.0), -3.0 * alpha * K * 10.0);
+  EXPECT_DOUBLE_EQ(mpm::thermal_kirchhoff_pressure(K, alpha, 310.0, 300.0, 1.0),
+                   -3.0 * alpha * K * 10.0);
   const mpm::Mat<2> s = mpm::thermal_cauchy_stress<2>(K, alpha, 310.0, 300.0, 1.02);
   EXPECT_DOUBLE_EQ(s(0, 0), s(1, 1));
   EXPECT_EQ(s(0, 1), 0.0);
@@ -97,7 +98,8 @@ TEST(ThermalPhysics, AdiabaticRatioIsAFunctionOfStateAndHeatsInCompression) {
   EXPECT_NEAR(down * up, 1.0, 1e-15);
   // Small change: θ̇/θ = −3α U″(J) J̇ /(ρ₀ c) with U″(1) = K ([XLS21] eq. (39)).
   const double small = mpm::adiabatic_temperature_ratio(K, alpha, rho, c, 1.0, 1.0, 1.0 - 1e-6);
-  EXPECT_NEAR((small - 1.0) / 1e-6, 3.0 * alpha * K / (rho * c), 1e-5 * 3.0 * alpha * K / (rho * c));
+  EXPECT_NEAR((small - 1.0) / 1e-6, 3.0 * alpha * K / (rho * c),
+              1e-5 * 3.0 * alpha * K / (rho * c));
   // Fully damaged and isotropically degraded: no coupling left.
   EXPECT_EQ(mpm::adiabatic_temperature_ratio(K, alpha, rho, c, 0.0, 1.0, 0.9), 1.0);
   EXPECT_EQ(mpm::coupling_fraction(0.5, mpm::Degradation::isotropic, 0.9), 0.5);
@@ -129,11 +131,12 @@ TEST(ThermalSolver, AdiabaticCompressReleaseCycleReturnsToTheStartingTemperature
   // books the last one and moves nothing.
   ASSERT_FALSE(solver.step(1e-15));
   const auto& P = solver.particles();
-  // Every particle sits on its own adiabat θ = θ_start exp(−3α(U′(J) − U′(1))/(ρ₀c)): the heating of
-  // the squeeze is given back exactly on release ([XLS21] eq. (39) integrated exactly, κ = 0).
+  // Every particle sits on its own adiabat θ = θ_start exp(−3α(U′(J) − U′(1))/(ρ₀c)): the heating
+  // of the squeeze is given back exactly on release ([XLS21] eq. (39) integrated exactly, κ = 0).
   double worst = 0.0;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const double adiabat = 300.0 * mpm::adiabatic_temperature_ratio(K, alpha, rho, c, 1.0, 1.0, P.F[p].determinant());
+    const double adiabat =
+        300.0 * mpm::adiabatic_temperature_ratio(K, alpha, rho, c, 1.0, 1.0, P.F[p].determinant());
     worst = std::max(worst, std::abs(P.temperature[p] - adiabat));
   }
   EXPECT_LT(worst, 1e-9 * 300.0);
@@ -198,7 +201,8 @@ max_steps = 150
 )toml";
   auto off = pipeline::parse_scene(replaced(base, "THERMAL", ""), "off.toml");
   auto on = pipeline::parse_scene(
-      replaced(base, "THERMAL", "heat_capacity = \"800 J/(kg K)\"\nconductivity = \"0 W/(m K)\"\nexpansion = 0"),
+      replaced(base, "THERMAL",
+               "heat_capacity = \"800 J/(kg K)\"\nconductivity = \"0 W/(m K)\"\nexpansion = 0"),
       "on.toml");
   ASSERT_FALSE(off.thermal.active());
   ASSERT_TRUE(on.thermal.active());
@@ -221,7 +225,8 @@ max_steps = 150
   // Damage heat: with α = 0 and κ = 0 the heat content equals the recorded damage dissipation once
   // a vanishing step has booked the last mechanical step's damage.
   ASSERT_FALSE(b.step(1e-15));
-  EXPECT_NEAR(b.last_row().thermal, b.accumulators().dissipated, 1e-9 * b.accumulators().dissipated);
+  EXPECT_NEAR(b.last_row().thermal, b.accumulators().dissipated,
+              1e-9 * b.accumulators().dissipated);
 }
 
 TEST(ThermalSolver, ConductionMatchesTheErfcSolution) {
@@ -229,14 +234,15 @@ TEST(ThermalSolver, ConductionMatchesTheErfcSolution) {
   options.quick = true;
   const auto rows = pipeline::verify_conduction(options);
   ASSERT_EQ(rows.size(), 6u);
-  for (std::size_t k = 0; k + 2 < rows.size(); ++k) EXPECT_LT(rows[k + 2].value, rows[k].value);  // refines
-  EXPECT_LT(rows[4].value, 0.01);  // finest quick level, 1 ms
-  EXPECT_LT(rows[5].value, 0.01);  // 4 ms
+  for (std::size_t k = 0; k + 2 < rows.size(); ++k)
+    EXPECT_LT(rows[k + 2].value, rows[k].value);  // refines
+  EXPECT_LT(rows[4].value, 0.01);                 // finest quick level, 1 ms
+  EXPECT_LT(rows[5].value, 0.01);                 // 4 ms
 }
 
 TEST(ThermalSolver, ContactFaceTemperaturesOfPressedBlocksMatchEq90) {
-  // V3: steady conduction through two pressed blocks with h_c = γ̄|p| ([XLS21] eq. (13), (90)), three
-  // pressures; the contact heat uses the step's normal contact impulse (eq. (82)).
+  // V3: steady conduction through two pressed blocks with h_c = γ̄|p| ([XLS21] eq. (13), (90)),
+  // three pressures; the contact heat uses the step's normal contact impulse (eq. (82)).
   pipeline::VerifyOptions options;
   options.quick = true;
   const auto rows = pipeline::verify_contact_temperature(options);
@@ -290,8 +296,8 @@ double heat_after(const std::string& heat, double end_time) {
 }  // namespace
 
 TEST(ThermalBoundary, FluxThroughAThermalPlaneAddsExactlyQTimesFaceTimesTime) {
-  // [XLS21] eq. (57): Q_i = ∫ S_i q̄ dΓ; the face length per node from ∮ S_i n dΓ = ∫ ∇S_i dV sums to
-  // the face, 1 mm, so the heat content grows by q̄ · 1 mm · t.
+  // [XLS21] eq. (57): Q_i = ∫ S_i q̄ dΓ; the face length per node from ∮ S_i n dΓ = ∫ ∇S_i dV sums
+  // to the face, 1 mm, so the heat content grows by q̄ · 1 mm · t.
   const double heat = heat_after(R"toml(
 [[walls]]
 name = "heater"
@@ -299,7 +305,8 @@ point = ["0 mm", "0 mm"]
 normal = [1, 0]
 kind = "thermal"
 thermal = { flux = "2 MW/m2" }
-)toml", 1e-3);
+)toml",
+                                 1e-3);
   EXPECT_NEAR(heat, 2e6 * 1e-3 * 1e-3, 1e-9 * 2.0);
 }
 
@@ -310,7 +317,8 @@ name = "heater"
 body = "strip"
 side = "-x"
 heat_flux = "-1 MW/m2"
-)toml", 1e-3);
+)toml",
+                                 1e-3);
   EXPECT_NEAR(heat, -1e6 * 1e-3 * 1e-3, 1e-9);
 }
 
@@ -322,9 +330,10 @@ point = ["4 mm", "0 mm"]
 normal = [-1, 0]
 kind = "thermal"
 thermal = { film_coefficient = "1 kW/(m2 K)", ambient = "400 K" }
-)toml", 2e-3);
-  // Heat flows in at h (θ_∞ − θ) A: at most h ΔT A t = 1e3 · 100 · 1e-3 · 2e-3 = 0.2 J/m, and only a
-  // little less because the face warms slowly (capacity m c = 1000 · 4e-6 · 100 = 0.4 J/(K m)).
+)toml",
+                                 2e-3);
+  // Heat flows in at h (θ_∞ − θ) A: at most h ΔT A t = 1e3 · 100 · 1e-3 · 2e-3 = 0.2 J/m, and only
+  // a little less because the face warms slowly (capacity m c = 1000 · 4e-6 · 100 = 0.4 J/(K m)).
   EXPECT_GT(heat, 0.95 * 0.2);
   EXPECT_LT(heat, 0.2);
 }
@@ -339,13 +348,14 @@ TEST(ThermalScene, ThermalDataWithoutHeatCapacityIsRefusedWithFileLineAndKey) {
     EXPECT_NE(what.find("squeeze.toml"), std::string::npos) << what;
     EXPECT_NE(what.find("heat_capacity"), std::string::npos) << what;
   }
-  EXPECT_THROW(pipeline::parse_scene(replaced(squeeze_scene, "\"1e-4 1/K\"", "\"5 m\""), "squeeze.toml"),
-               pipeline::SceneError);
+  EXPECT_THROW(
+      pipeline::parse_scene(replaced(squeeze_scene, "\"1e-4 1/K\"", "\"5 m\""), "squeeze.toml"),
+      pipeline::SceneError);
 }
 
 TEST(ThermalContact, FrictionalHeatEqualsFrictionWorkAtAWall) {
-  // A block sliding on a floor with Coulomb friction: all friction work of the wall ([NBS18] eq. (27))
-  // becomes heat of the block, so the heat content equals /series/friction_work.
+  // A block sliding on a floor with Coulomb friction: all friction work of the wall ([NBS18] eq.
+  // (27)) becomes heat of the block, so the heat content equals /series/friction_work.
   const char* scene = R"toml(
 [grid]
 cell_size = "1 mm"
@@ -398,7 +408,8 @@ double node_row_temperature(const mpm::Particles<2>& P, int body, double y, doub
   for (std::size_t p = 0; p < P.size(); ++p) {
     if (body >= 0 && P.body[p] != body) continue;
     const double half = 0.5 * (std::abs(P.domain[p](1, 0)) + std::abs(P.domain[p](1, 1)));
-    const double w = (integral(P.x[p][1] + half) - integral(P.x[p][1] - half)) / (2.0 * half) * P.mass[p];
+    const double w =
+        (integral(P.x[p][1] + half) - integral(P.x[p][1] - half)) / (2.0 * half) * P.mass[p];
     weight += w;
     heat += w * P.temperature[p];
   }
@@ -409,11 +420,13 @@ double node_row_temperature(const mpm::Particles<2>& P, int body, double y, doub
 
 TEST(ThermalContact, PerfectlyConductingContactPassesTheBulkFlux) {
   // The pressed blocks of V3 with an enormous conductance: the contact nodes are merged into one
-  // thermal field (merge_perfect_contacts), so the contact conducts like the bulk. Steady state: one linear profile
-  // from 20 °C to 50 °C over 5 mm, the same flux κ ΔT / L in both blocks, no jump at the interface.
+  // thermal field (merge_perfect_contacts), so the contact conducts like the bulk. Steady state:
+  // one linear profile from 20 °C to 50 °C over 5 mm, the same flux κ ΔT / L in both blocks, no
+  // jump at the interface.
   auto problem = pipeline::parse_scene(
-      pipeline::with_overrides(pipeline::embedded_scene("verify/contact-temperature.toml"),
-                               {{"contact.conductance", "\"1e12 W/(m2 K)\""}, {"output.interval", "0.0"}}),
+      pipeline::with_overrides(
+          pipeline::embedded_scene("verify/contact-temperature.toml"),
+          {{"contact.conductance", "\"1e12 W/(m2 K)\""}, {"output.interval", "0.0"}}),
       "contact-temperature.toml");
   const double end = problem.stop.end_time, h = problem.grid.cell_size;
   mpm::Solver<2> solver(std::move(problem));
@@ -422,16 +435,18 @@ TEST(ThermalContact, PerfectlyConductingContactPassesTheBulkFlux) {
   // The merged interface node holds the mean of the linear profile.
   EXPECT_NEAR(node_row_temperature(P, -1, 2.5e-3, h), 308.15, 0.01);
   const double bulk_gradient = 30.0 / 5e-3;  // [K/m]
-  const double lower_gradient = (node_row_temperature(P, 0, 2.0e-3, h) - node_row_temperature(P, 0, 0.5e-3, h)) / 1.5e-3;
-  const double upper_gradient = (node_row_temperature(P, 1, 4.5e-3, h) - node_row_temperature(P, 1, 3.0e-3, h)) / 1.5e-3;
+  const double lower_gradient =
+      (node_row_temperature(P, 0, 2.0e-3, h) - node_row_temperature(P, 0, 0.5e-3, h)) / 1.5e-3;
+  const double upper_gradient =
+      (node_row_temperature(P, 1, 4.5e-3, h) - node_row_temperature(P, 1, 3.0e-3, h)) / 1.5e-3;
   EXPECT_NEAR(lower_gradient, bulk_gradient, 1e-4 * bulk_gradient);
   EXPECT_NEAR(upper_gradient, bulk_gradient, 1e-4 * bulk_gradient);
 }
 
 TEST(ThermalContact, ThermalSofteningFrictionVanishesAtTheDamageTemperature) {
   // A slider pushed onto a base by gravity slides with μ(θ) = μ₀⟨θ_dam − θ⟩²/(θ_dam − θ_ref)²
-  // ([XLS21] eq. (15)), θ from the nodal temperatures of the two fields: at θ_ref it does friction work,
-  // at and above θ_dam none at all.
+  // ([XLS21] eq. (15)), θ from the nodal temperatures of the two fields: at θ_ref it does friction
+  // work, at and above θ_dam none at all.
   const std::string scene = R"toml(
 [grid]
 cell_size = "1 mm"
@@ -471,7 +486,8 @@ friction = { law = "thermal-softening", mu = 0.5, theta_ref = "300 K", theta_dam
 max_steps = 300
 )toml";
   auto friction_work = [&](const std::string& temperature) {
-    mpm::Solver<2> solver(pipeline::parse_scene(replaced(scene, "TEMP", temperature), "slider.toml"));
+    mpm::Solver<2> solver(
+        pipeline::parse_scene(replaced(scene, "TEMP", temperature), "slider.toml"));
     for (int s = 0; s < 300; ++s) {
       auto failure = solver.step();
       if (failure) ADD_FAILURE() << failure->what;
@@ -488,15 +504,16 @@ max_steps = 300
 
 TEST(ThermalSolver, TemperaturePicFractionKeepsTheRangeAndConservesHeat) {
   // Two bonded blocks at 400 K and 300 K with conductivities 100 and 0.01 W/(m K), drifting at
-  // 0.1 m/s so cells come to hold both (scenes/stability/conductivity-contrast.toml). No heat source:
-  // the maximum principle bounds every temperature by [300, 400] K. The incremental update of [XLS21]
-  // eq. (62) alone carries particles past 400 K; with ζ_θ = 0.05 (the scene's value) they stay
-  // inside. Heat content is conserved either way.
+  // 0.1 m/s so cells come to hold both (scenes/stability/conductivity-contrast.toml). No heat
+  // source: the maximum principle bounds every temperature by [300, 400] K. The incremental update
+  // of [XLS21] eq. (62) alone carries particles past 400 K; with ζ_θ = 0.05 (the scene's value)
+  // they stay inside. Heat content is conserved either way.
   const std::string scene = pipeline::embedded_scene("stability/conductivity-contrast.toml");
   double hottest[2] = {0.0, 0.0};
   for (int run = 0; run < 2; ++run) {
     const std::string text =
-        run == 0 ? replaced(scene, "thermal_pic_fraction = 0.05", "thermal_pic_fraction = 0") : scene;
+        run == 0 ? replaced(scene, "thermal_pic_fraction = 0.05", "thermal_pic_fraction = 0")
+                 : scene;
     mpm::Solver<2> solver(pipeline::parse_scene(text, "conductivity-contrast.toml"));
     const double heat0 = mpm::thermal_energy<2>(solver.problem(), solver.particles());
     for (int s = 0; s < 300; ++s) ASSERT_FALSE(solver.step());  // the scene's max_steps
@@ -505,7 +522,8 @@ TEST(ThermalSolver, TemperaturePicFractionKeepsTheRangeAndConservesHeat) {
     const double coldest = *std::min_element(T.begin(), T.end());
     const double heat = mpm::thermal_energy<2>(solver.problem(), solver.particles());
     const auto& mass = solver.particles().mass;
-    const double scale = std::accumulate(mass.begin(), mass.end(), 0.0) * 1000.0 * 100.0;  // C ΔT [J/m]
+    const double scale =
+        std::accumulate(mass.begin(), mass.end(), 0.0) * 1000.0 * 100.0;  // C ΔT [J/m]
     EXPECT_LT(std::abs(heat - heat0) / scale, 1e-12) << "run " << run;
     EXPECT_GE(coldest, 300.0 - 1e-9) << "run " << run;
   }

@@ -26,8 +26,8 @@ inline void expect_matches_truth(const Segmentation& s, const SyntheticImage& tr
     EXPECT_TRUE(used.insert(label).second) << what << ": truth grains share label " << label;
     const double area_px = s.table.grains[static_cast<std::size_t>(label - 1)].shape.area /
                            (s.pixel_size * s.pixel_size);
-    EXPECT_NEAR(area_px / t.area, 1.0, rel_tol) << what << ": grain " << k << " area " << area_px
-                                                << " px² vs " << t.area;
+    EXPECT_NEAR(area_px / t.area, 1.0, rel_tol)
+        << what << ": grain " << k << " area " << area_px << " px² vs " << t.area;
   }
 }
 

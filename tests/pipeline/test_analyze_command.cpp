@@ -2,7 +2,6 @@
 // platen displacement and by index; the CSV tables, the /fragments/ groups and the count series;
 // clear messages and exit code 2 on bad input.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -23,7 +22,8 @@ namespace {
 constexpr double kSpacing = 1e-4;
 
 int run_fragmpm(const std::string& arguments, const fs::path& log) {
-  const std::string command = std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
+  const std::string command =
+      std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -66,8 +66,8 @@ fm::Particles<2> block(int cuts) {
   return P;
 }
 
-/// Run file with frames at t = 0, 10, 20 µs (0, 1, 2 cuts) and a platen that has moved 0, 0.1, 0.2 mm.
-/// Without `damage` the frames keep every field but damage.
+/// Run file with frames at t = 0, 10, 20 µs (0, 1, 2 cuts) and a platen that has moved 0, 0.1, 0.2
+/// mm. Without `damage` the frames keep every field but damage.
 std::string write_run(const fs::path& dir, bool damage = true) {
   const std::string path = (dir / "tiny.h5").string();
   fm::RunMeta meta;
@@ -104,10 +104,12 @@ TEST(AnalyzeCommand, TablesSeriesAndRunFileGroups) {
   EXPECT_NE(log.find("--at 10us -> frame 1"), std::string::npos) << log;
   EXPECT_NE(log.find("--at 20us -> frame 2"), std::string::npos) << log;
 
-  // Frame 1: two 200-particle halves; frame 2: the upper half cut in two (9 + 10 columns x 10 rows).
+  // Frame 1: two 200-particle halves; frame 2: the upper half cut in two (9 + 10 columns x 10
+  // rows).
   auto table1 = lines(out / "fragments_000001.csv");
   ASSERT_EQ(table1.size(), 3u);
-  EXPECT_EQ(table1[0].rfind("id,particles,area_m2,equivalent_diameter_m,roundness", 0), 0u) << table1[0];
+  EXPECT_EQ(table1[0].rfind("id,particles,area_m2,equivalent_diameter_m,roundness", 0), 0u)
+      << table1[0];
   EXPECT_EQ(table1[1].rfind("0,200,", 0), 0u) << table1[1];
   EXPECT_EQ(table1[2].rfind("1,200,", 0), 0u) << table1[2];
   auto table2 = lines(out / "fragments_000002.csv");
@@ -121,11 +123,13 @@ TEST(AnalyzeCommand, TablesSeriesAndRunFileGroups) {
   // The count series covers every frame, with the platen travel.
   auto series = lines(out / "fragment_series.csv");
   ASSERT_EQ(series.size(), 4u);
-  EXPECT_EQ(series[0].rfind("frame,step,time_s,platen_displacement_m,fragments,fines", 0), 0u) << series[0];
+  EXPECT_EQ(series[0].rfind("frame,step,time_s,platen_displacement_m,fragments,fines", 0), 0u)
+      << series[0];
   EXPECT_EQ(series[1].rfind("0,0,0,0,1,0,", 0), 0u) << series[1];
   EXPECT_EQ(series[2].rfind("1,100,1e-05,0.0001,2,0,", 0), 0u) << series[2];
   EXPECT_EQ(series[3].rfind("2,200,2e-05,0.0002,3,0,", 0), 0u) << series[3];
-  for (const char* png : {"cdf_equivalent_diameter.png", "cdf_roundness_mass.png", "fragment_count.png"})
+  for (const char* png :
+       {"cdf_equivalent_diameter.png", "cdf_roundness_mass.png", "fragment_count.png"})
     EXPECT_GT(fs::file_size(out / png), 1000u) << png;
 
   // The run file holds the same tables, with units.
@@ -145,13 +149,15 @@ TEST(AnalyzeCommand, TablesSeriesAndRunFileGroups) {
   const auto ids = g.read<std::int32_t>("particle_fragment").values;
   EXPECT_EQ(ids.size(), 420u);
   EXPECT_EQ(std::count(ids.begin(), ids.end(), -1), 30);  // the masked row and half column
-  EXPECT_EQ(file.root().read<std::int64_t>("fragments/series/fragments").values, (std::vector<std::int64_t>{1, 2, 3}));
+  EXPECT_EQ(file.root().read<std::int64_t>("fragments/series/fragments").values,
+            (std::vector<std::int64_t>{1, 2, 3}));
 }
 
 TEST(AnalyzeCommand, ChoosesFramesByPlatenDisplacementAndSaysWhenItReplacesGroups) {
   const fs::path dir = fresh_directory("displacement");
   const std::string run = write_run(dir);
-  ASSERT_EQ(run_fragmpm("analyze " + run + " --at-displacement 0.19mm --no-figures", dir / "log"), 0)
+  ASSERT_EQ(run_fragmpm("analyze " + run + " --at-displacement 0.19mm --no-figures", dir / "log"),
+            0)
       << read_text(dir / "log");
   EXPECT_NE(read_text(dir / "log").find("--at-displacement 0.19mm -> frame 2"), std::string::npos)
       << read_text(dir / "log");
@@ -162,7 +168,9 @@ TEST(AnalyzeCommand, ChoosesFramesByPlatenDisplacementAndSaysWhenItReplacesGroup
   const std::string log = read_text(dir / "log2");
   EXPECT_NE(log.find("--at 0.2mm -> frame 2"), std::string::npos) << log;
   EXPECT_NE(log.find("--frame 0 -> frame 0"), std::string::npos) << log;
-  EXPECT_NE(log.find("/fragments/000002 replaced the group of an earlier analyze"), std::string::npos) << log;
+  EXPECT_NE(log.find("/fragments/000002 replaced the group of an earlier analyze"),
+            std::string::npos)
+      << log;
 }
 
 TEST(AnalyzeCommand, RunFileWithoutDamageDataExitsWith2) {
@@ -186,7 +194,8 @@ TEST(AnalyzeCommand, FrameThatDoesNotExistExitsWith2) {
   log = read_text(dir / "log");
   EXPECT_NE(log.find("no frame near t = 5 ms"), std::string::npos) << log;
   EXPECT_EQ(run_fragmpm("analyze " + run + " --at-displacement 3mm", dir / "log"), 2);
-  EXPECT_NE(read_text(dir / "log").find("no frame near platen displacement 3 mm"), std::string::npos)
+  EXPECT_NE(read_text(dir / "log").find("no frame near platen displacement 3 mm"),
+            std::string::npos)
       << read_text(dir / "log");
 }
 
@@ -202,7 +211,8 @@ TEST(AnalyzeCommand, OtherBadInputExitsWith2WithAMessage) {
       {"analyze " + (dir / "missing.h5").string(), "missing.h5: no such file"},
       {"analyze " + (dir / "notes.h5").string(), "not a FragMPM run file"},
       {"analyze " + (dir / "other.h5").string(), "not a FragMPM run file (no /meta group)"},
-      {"analyze " + run + " --platen top", "--platen 'top': the run has no such wall (its walls: floor, platen)"},
+      {"analyze " + run + " --platen top",
+       "--platen 'top': the run has no such wall (its walls: floor, platen)"},
       {"analyze " + run + " --at 20", "--at '20': give a unit"},
       {"analyze " + run + " --at 20kg", "--at '20kg': expected a time"},
       {"analyze " + run + " --frame x", "--frame 'x': expected a frame index"},
@@ -210,8 +220,10 @@ TEST(AnalyzeCommand, OtherBadInputExitsWith2WithAMessage) {
       {"analyze " + run + " --min-particles 0", "at least 1"},
   };
   for (const Case& c : cases) {
-    EXPECT_EQ(run_fragmpm(c.arguments, dir / "log"), 2) << c.arguments << "\n" << read_text(dir / "log");
-    EXPECT_NE(read_text(dir / "log").find(c.message), std::string::npos) << c.arguments << "\n" << read_text(dir / "log");
+    EXPECT_EQ(run_fragmpm(c.arguments, dir / "log"), 2) << c.arguments << "\n"
+                                                        << read_text(dir / "log");
+    EXPECT_NE(read_text(dir / "log").find(c.message), std::string::npos) << c.arguments << "\n"
+                                                                         << read_text(dir / "log");
   }
 }
 
@@ -223,11 +235,13 @@ TEST(AnalyzeCommand, RefusesToReplaceAGroupItDidNotWrite) {
     file.root().require_group("fragments/000002").set_attribute("note", "a user's own analysis");
   }
   EXPECT_EQ(run_fragmpm("analyze " + run + " --frame last --no-figures", dir / "log"), 2);
-  EXPECT_NE(read_text(dir / "log").find("/fragments/000002 exists and was not written by fragmpm analyze"),
+  EXPECT_NE(read_text(dir / "log")
+                .find("/fragments/000002 exists and was not written by fragmpm analyze"),
             std::string::npos)
       << read_text(dir / "log");
   const fm::h5::File file = fm::h5::File::open(run, false);
-  EXPECT_EQ(file.root().open_group("fragments/000002").attribute_string("note"), "a user's own analysis");
+  EXPECT_EQ(file.root().open_group("fragments/000002").attribute_string("note"),
+            "a user's own analysis");
   // --csv-only leaves the run file alone and still writes the tables.
   EXPECT_EQ(run_fragmpm("analyze " + run + " --frame last --no-figures --csv-only", dir / "log"), 0)
       << read_text(dir / "log");

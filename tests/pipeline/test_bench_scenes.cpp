@@ -28,7 +28,8 @@ double total_mass(const mpm::Problem<2>& p) {
 
 mpm::Vec<2> total_momentum(const mpm::Problem<2>& p) {
   mpm::Vec<2> sum = mpm::Vec<2>::Zero();
-  for (std::size_t i = 0; i < p.particles.size(); ++i) sum += p.particles.mass[i] * p.particles.v[i];
+  for (std::size_t i = 0; i < p.particles.size(); ++i)
+    sum += p.particles.mass[i] * p.particles.v[i];
   return sum;
 }
 

@@ -3,16 +3,14 @@
 // a missing image and a scene without an image body give exit code 2; a tiny end-to-end run writes
 // the preview, run file, figures and summary. The full demo is not run here (minutes).
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <toml++/toml.h>
 
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/pipeline_job.hpp"
@@ -24,7 +22,8 @@ namespace fp = fragmpm::pipeline;
 namespace {
 
 int run_fragmpm(const std::string& arguments, const fs::path& log) {
-  const std::string command = std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
+  const std::string command =
+      std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -96,8 +95,9 @@ fs::path write_tiny_scene(const fs::path& dir) {
 }  // namespace
 
 TEST(PipelineScene, ImageIsReplacedInPlaceKeepingEveryLine) {
-  const std::string text = "[grid]\ncell_size = \"5 um\"\n\n[[bodies]]\nname = \"a\"\nimage   =  'x.png'  # grains\n"
-                           "[[bodies]]\nname = \"b\"\nshape = \"disk\"\n";
+  const std::string text =
+      "[grid]\ncell_size = \"5 um\"\n\n[[bodies]]\nname = \"a\"\nimage   =  'x.png'  # grains\n"
+      "[[bodies]]\nname = \"b\"\nshape = \"disk\"\n";
   const std::string out = fp::scene_with_image(text, "s.toml", "/data/my \"odd\" image.png");
   EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), std::count(text.begin(), text.end(), '\n'));
   const toml::table t = toml::parse(out);
@@ -113,10 +113,11 @@ TEST(PipelineScene, DemoSceneHasAnImageBody) {
 }
 
 TEST(PipelineScene, DemoSceneCrushesSeveralGrainsBetweenPlatens) {
-  // The embedded demo on the shipped image: several grains ([XLS21] §4.5.1 needs grains to crush against
-  // each other), a platen that moves and a stop on its travel large enough for the grains to crack —
-  // at least 20 % of the window height (150 um) — reached before the end time.
-  const std::string text = fp::scene_with_image(fp::embedded_scene("demo/sandstone-crush.toml"), "demo", kImage);
+  // The embedded demo on the shipped image: several grains ([XLS21] §4.5.1 needs grains to crush
+  // against each other), a platen that moves and a stop on its travel large enough for the grains
+  // to crack — at least 20 % of the window height (150 um) — reached before the end time.
+  const std::string text =
+      fp::scene_with_image(fp::embedded_scene("demo/sandstone-crush.toml"), "demo", kImage);
   const auto problem = fp::parse_scene(text, "demo");
   EXPECT_GE(problem.body_names.size(), 5u);
   EXPECT_GT(problem.particles.size(), 1000u);
@@ -124,9 +125,10 @@ TEST(PipelineScene, DemoSceneCrushesSeveralGrainsBetweenPlatens) {
   const auto& platen = problem.walls.at(static_cast<std::size_t>(problem.stop.platen));
   EXPECT_EQ(platen.name, "platen");
   EXPECT_GE(problem.stop.platen_displacement, 0.2 * 150e-6);
-  EXPECT_GE(platen.velocity.displacement(problem.stop.end_time).norm(), problem.stop.platen_displacement);
-  // The platen touches grains from the start, so it starts at rest: at full speed (20 m/s) at once it
-  // would send a rho c v = 210 MPa wave through grains of 25 MPa tensile strength.
+  EXPECT_GE(platen.velocity.displacement(problem.stop.end_time).norm(),
+            problem.stop.platen_displacement);
+  // The platen touches grains from the start, so it starts at rest: at full speed (20 m/s) at once
+  // it would send a rho c v = 210 MPa wave through grains of 25 MPa tensile strength.
   EXPECT_EQ(platen.velocity.velocity(0.0).norm(), 0.0);
   EXPECT_GT(platen.velocity.velocity(problem.stop.end_time).norm(), 10.0);
 }
@@ -145,8 +147,9 @@ TEST(DemoCommand, RefusesNonEmptyDirectoryBeforeSimulating) {
 }
 
 TEST(PipelineScene, SceneWithoutImageBodyIsRejected) {
-  EXPECT_THROW(fp::scene_with_image("[[bodies]]\nname = \"a\"\nshape = \"disk\"\n", "s.toml", "/x.png"),
-               fp::PipelineError);
+  EXPECT_THROW(
+      fp::scene_with_image("[[bodies]]\nname = \"a\"\nshape = \"disk\"\n", "s.toml", "/x.png"),
+      fp::PipelineError);
   EXPECT_THROW(fp::scene_with_image("[[bodies]\n", "s.toml", "/x.png"), fp::PipelineError);
 }
 
@@ -156,10 +159,11 @@ TEST(PipelineCommand, RefusesNonEmptyDirectoryWithoutOverwrite) {
   const fs::path out = dir / "out";
   fs::create_directories(out);
   std::ofstream(out / "keep.txt") << "mine\n";
-  const int code =
-      run_fragmpm("pipeline " + kImage + " --scene " + scene.string() + " -o " + out.string(), dir / "log.txt");
+  const int code = run_fragmpm(
+      "pipeline " + kImage + " --scene " + scene.string() + " -o " + out.string(), dir / "log.txt");
   EXPECT_EQ(code, 2);
-  EXPECT_NE(read_text(dir / "log.txt").find("--overwrite"), std::string::npos) << read_text(dir / "log.txt");
+  EXPECT_NE(read_text(dir / "log.txt").find("--overwrite"), std::string::npos)
+      << read_text(dir / "log.txt");
   EXPECT_EQ(read_text(out / "keep.txt"), "mine\n");
   EXPECT_FALSE(fs::exists(out / "run.h5"));
 }
@@ -167,11 +171,12 @@ TEST(PipelineCommand, RefusesNonEmptyDirectoryWithoutOverwrite) {
 TEST(PipelineCommand, MissingImageIsBadInput) {
   const fs::path dir = fresh_directory("no_image");
   const fs::path scene = write_tiny_scene(dir);
-  const int code = run_fragmpm("pipeline " + (dir / "nope.png").string() + " --scene " + scene.string() + " -o " +
-                                   (dir / "out").string(),
+  const int code = run_fragmpm("pipeline " + (dir / "nope.png").string() + " --scene " +
+                                   scene.string() + " -o " + (dir / "out").string(),
                                dir / "log.txt");
   EXPECT_EQ(code, 2);
-  EXPECT_NE(read_text(dir / "log.txt").find("nope.png: no such file"), std::string::npos) << read_text(dir / "log.txt");
+  EXPECT_NE(read_text(dir / "log.txt").find("nope.png: no such file"), std::string::npos)
+      << read_text(dir / "log.txt");
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
@@ -179,10 +184,12 @@ TEST(PipelineCommand, SceneWithoutImageBodyIsBadInput) {
   const fs::path dir = fresh_directory("no_image_body");
   const fs::path scene = dir / "disk.toml";
   std::ofstream(scene) << "[[bodies]]\nname = \"a\"\nshape = \"disk\"\n";
-  const int code =
-      run_fragmpm("pipeline " + kImage + " --scene " + scene.string() + " -o " + (dir / "out").string(), dir / "log.txt");
+  const int code = run_fragmpm(
+      "pipeline " + kImage + " --scene " + scene.string() + " -o " + (dir / "out").string(),
+      dir / "log.txt");
   EXPECT_EQ(code, 2);
-  EXPECT_NE(read_text(dir / "log.txt").find("image"), std::string::npos) << read_text(dir / "log.txt");
+  EXPECT_NE(read_text(dir / "log.txt").find("image"), std::string::npos)
+      << read_text(dir / "log.txt");
 }
 
 TEST(PipelineCommand, TinyRunWritesEverything) {
@@ -191,8 +198,8 @@ TEST(PipelineCommand, TinyRunWritesEverything) {
   const fs::path out = dir / "out";
   fs::create_directories(out);
   std::ofstream(out / "old.txt") << "old\n";  // non-empty: needs --overwrite
-  const int code = run_fragmpm("pipeline " + kImage + " --scene " + scene.string() + " -o " + out.string() +
-                                   " --overwrite --threads 1 -q",
+  const int code = run_fragmpm("pipeline " + kImage + " --scene " + scene.string() + " -o " +
+                                   out.string() + " --overwrite --threads 1 -q",
                                dir / "log.txt");
   const std::string log = read_text(dir / "log.txt");
   ASSERT_EQ(code, 0) << log;
@@ -202,11 +209,12 @@ TEST(PipelineCommand, TinyRunWritesEverything) {
   EXPECT_TRUE(fs::exists(out / "figures" / "damage_last.png"));
   EXPECT_TRUE(fs::exists(out / "figures" / "energy.png"));
   EXPECT_TRUE(fs::exists(out / "fragments" / "fragment_series.csv"));
-  for (const char* file : {"figures/speed_last.png", "figures/stress_last.png", "figures/body_last.png",
-                           "figures/force_displacement.png", "fragments/cdf_equivalent_diameter.png",
-                           "fragments/cdf_equivalent_diameter_mass.png", "fragments/cdf_roundness.png",
-                           "fragments/cdf_roundness_mass.png", "fragments/fragment_count.png",
-                           "fragments/fragment_size.png"})
+  for (const char* file :
+       {"figures/speed_last.png", "figures/stress_last.png", "figures/body_last.png",
+        "figures/force_displacement.png", "fragments/cdf_equivalent_diameter.png",
+        "fragments/cdf_equivalent_diameter_mass.png", "fragments/cdf_roundness.png",
+        "fragments/cdf_roundness_mass.png", "fragments/fragment_count.png",
+        "fragments/fragment_size.png"})
     EXPECT_TRUE(fs::exists(out / file)) << file;
   // Frames 0, 1, 2 (0.1 us at 0.05 us intervals): the default analysis includes the last.
   EXPECT_TRUE(fs::exists(out / "fragments" / "fragments_000002.csv"));

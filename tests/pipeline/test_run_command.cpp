@@ -1,7 +1,6 @@
-// `fragmpm run` end to end: exit codes for bad input and numerical failure, refusal to overwrite, the
-// run file's contents, and a restart that reproduces an uninterrupted run bit for bit.
+// `fragmpm run` end to end: exit codes for bad input and numerical failure, refusal to overwrite,
+// the run file's contents, and a restart that reproduces an uninterrupted run bit for bit.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -42,7 +41,9 @@ const std::string disk_bounce = std::string(FRAGMPM_SOURCE_DIR) + "/scenes/disk-
 TEST(RunCommand, WritesRunFileWithFramesSeriesAndXdmf) {
   const fs::path dir = fresh_directory("run");
   const std::string out = (dir / "bounce.h5").string();
-  ASSERT_EQ(run_fragmpm("run " + disk_bounce + " -o " + out + " --max-steps 400 -q", (dir / "log").string()), 0)
+  ASSERT_EQ(run_fragmpm("run " + disk_bounce + " -o " + out + " --max-steps 400 -q",
+                        (dir / "log").string()),
+            0)
       << read_text((dir / "log").string());
   auto file = mpm::RunFile<2>::open_existing(out);
   EXPECT_GE(file.frame_count(), 2);
@@ -69,7 +70,8 @@ TEST(RunCommand, BadSceneExitsWithCode2AndNamesTheLine) {
   std::string text = read_text(disk_bounce);
   text.replace(text.find("E = \"10 MPa\""), 12, "E = \"10 m\"");
   { std::ofstream(scene) << text; }
-  EXPECT_EQ(run_fragmpm("run " + scene + " -o " + (dir / "x.h5").string(), (dir / "log").string()), 2);
+  EXPECT_EQ(run_fragmpm("run " + scene + " -o " + (dir / "x.h5").string(), (dir / "log").string()),
+            2);
   const std::string log = read_text((dir / "log").string());
   EXPECT_NE(log.find("bad.toml:"), std::string::npos) << log;
   EXPECT_NE(log.find("E"), std::string::npos) << log;
@@ -78,8 +80,8 @@ TEST(RunCommand, BadSceneExitsWithCode2AndNamesTheLine) {
 }
 
 TEST(RunCommand, NumericalFailureExitsWithCode3AndKeepsFrames) {
-  // A fixed Δt just below the CFL = 1 limit of the initial state (5.8 μs) is accepted, but the disk speeds up
-  // under a huge gravity until the step is unstable: the run must stop with a diagnostic.
+  // A fixed Δt just below the CFL = 1 limit of the initial state (5.8 μs) is accepted, but the disk
+  // speeds up under a huge gravity until the step is unstable: the run must stop with a diagnostic.
   const fs::path dir = fresh_directory("fail");
   const std::string scene = (dir / "unstable.toml").string();
   std::string text = read_text(disk_bounce);
@@ -102,7 +104,9 @@ TEST(RunCommand, RestartReproducesUninterruptedRunBitForBit) {
   text.replace(text.find("end_time = \"20 ms\""), 18, "end_time = \"4 ms\"");
   { std::ofstream(scene) << text; }
   ASSERT_EQ(run_fragmpm("run " + scene + " -o " + whole + " -q", (dir / "log1").string()), 0);
-  ASSERT_EQ(run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps 517", (dir / "log2").string()), 0);
+  ASSERT_EQ(
+      run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps 517", (dir / "log2").string()),
+      0);
   ASSERT_EQ(run_fragmpm("run --restart " + parts + " -q", (dir / "log3").string()), 0)
       << read_text((dir / "log3").string());
   auto a = mpm::RunFile<2>::open_existing(whole);

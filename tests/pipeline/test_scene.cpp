@@ -1,5 +1,5 @@
-// Scene files: good scenes give exact lattice counts, areas and masses; every malformed scene gives a
-// SceneError naming file, line and key.
+// Scene files: good scenes give exact lattice counts, areas and masses; every malformed scene gives
+// a SceneError naming file, line and key.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -63,12 +63,13 @@ std::string replace(std::string text, const std::string& from, const std::string
 int line_of(const std::string& text, const std::string& marker) {
   const auto at = text.find(marker);
   EXPECT_NE(at, std::string::npos) << "test setup: marker '" << marker << "' not in scene";
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+  return 1 + static_cast<int>(
+                 std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
 /// Parses a scene that must fail; checks file:line, key and a piece of the explanation.
-void expect_scene_error(const std::string& text, const std::string& line_marker, const std::string& key,
-                        const std::string& explanation) {
+void expect_scene_error(const std::string& text, const std::string& line_marker,
+                        const std::string& key, const std::string& explanation) {
   const int line = line_of(text, line_marker);
   try {
     fp::parse_scene(text, "bad.toml");
@@ -108,12 +109,12 @@ TEST(Scene, BoxGivesTheExactLatticeCountAndUnitsAreSI) {
   EXPECT_EQ(p.time.pic_fraction, 0.0);
   EXPECT_DOUBLE_EQ(p.gravity.y(), -9.81);
   ASSERT_EQ(p.materials.size(), 1u);
-  EXPECT_DOUBLE_EQ(p.materials[0].density, 2300.0);                        // "2.3 g/cm3"
+  EXPECT_DOUBLE_EQ(p.materials[0].density, 2300.0);                            // "2.3 g/cm3"
   EXPECT_NEAR(p.materials[0].bulk_modulus, 70e9 / (3 * (1 - 2 * 0.22)), 1.0);  // K = E / 3(1 − 2ν)
   EXPECT_NEAR(p.materials[0].shear_modulus, 70e9 / (2 * (1 + 0.22)), 1.0);     // G = E / 2(1 + ν)
-  EXPECT_DOUBLE_EQ(p.stop.end_time, 2.5e-4);                               // "250 us"
+  EXPECT_DOUBLE_EQ(p.stop.end_time, 2.5e-4);                                   // "250 us"
   EXPECT_EQ(p.stop.platen, -1);
-  EXPECT_DOUBLE_EQ(p.output.interval, 2.5e-4 / 20);                        // default end_time / 20
+  EXPECT_DOUBLE_EQ(p.output.interval, 2.5e-4 / 20);  // default end_time / 20
   EXPECT_TRUE(p.output.fields.empty());
   ASSERT_EQ(p.walls.size(), 1u);
   EXPECT_DOUBLE_EQ(p.walls[0].normal.y(), 1.0);  // [0, 2] normalised
@@ -263,7 +264,8 @@ max = ["8 mm", "4 mm"]
   EXPECT_EQ(count_body(p.particles, 0), 128u);
   EXPECT_EQ(count_body(p.particles, 1), 64u);  // 8 x 8
   std::size_t surface[2] = {0, 0};
-  for (std::size_t k = 0; k < p.particles.size(); ++k) surface[p.particles.body[k]] += p.particles.surface[k];
+  for (std::size_t k = 0; k < p.particles.size(); ++k)
+    surface[p.particles.body[k]] += p.particles.surface[k];
   // The shared edge is a surface on both sides (the neighbour belongs to another body).
   EXPECT_EQ(surface[0], 128u - 14u * 6u);
   EXPECT_EQ(surface[1], 64u - 6u * 6u);
@@ -283,10 +285,12 @@ max = ["8 mm", "4 mm"]
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_EQ(count_body(p.particles, 0), 128u);
   EXPECT_EQ(count_body(p.particles, 1), 64u);  // only the part right of x = 6 mm
-  EXPECT_NE(err.find("overlap.toml:" + std::to_string(line_of(text, "name = \"right\"") - 1) + ": warning"),
+  EXPECT_NE(err.find("overlap.toml:" + std::to_string(line_of(text, "name = \"right\"") - 1) +
+                     ": warning"),
             std::string::npos)
       << err;
-  EXPECT_NE(err.find("'right' overlaps body 'block' at 64 particle sites"), std::string::npos) << err;
+  EXPECT_NE(err.find("'right' overlaps body 'block' at 64 particle sites"), std::string::npos)
+      << err;
 }
 
 TEST(Scene, ShapeTouchingTheDomainEdgeIsInside) {
@@ -378,8 +382,8 @@ fields = ["x", "damage", "stress"]
   EXPECT_DOUBLE_EQ(shaker.velocity.frequency, 1000.0);
   EXPECT_DOUBLE_EQ(shaker.velocity.phase, std::numbers::pi / 2);
   EXPECT_FALSE(shaker.region.bounded);
-  // A delayed sinusoid ([NBS18] eq. (44)): at rest until t_start, then v_max sin ω(t − t1); after half a
-  // period it has moved 2 v_max/ω, and a bounded wall acts only inside its (moving) box.
+  // A delayed sinusoid ([NBS18] eq. (44)): at rest until t_start, then v_max sin ω(t − t1); after
+  // half a period it has moved 2 v_max/ω, and a bounded wall acts only inside its (moving) box.
   const auto& driver = p.walls[3];
   EXPECT_DOUBLE_EQ(driver.velocity.t_start, 1e-3);
   EXPECT_DOUBLE_EQ(driver.velocity.velocity(0.9e-3).x(), 0.0);
@@ -413,7 +417,8 @@ TEST(Scene, FixedTimeStepAcceptedUpToTheHardLimit) {
   };
   // Above cfl * limit but below the limit: allowed (the user asked for it).
   EXPECT_DOUBLE_EQ(fp::parse_scene(with_dt(0.99 * limit), "dt.toml").time.fixed_dt, 0.99 * limit);
-  EXPECT_NEAR(mpm::stable_time_step<2>(fp::parse_scene(kGood, "g.toml"), fp::parse_scene(kGood, "g.toml").particles, 1.0),
+  EXPECT_NEAR(mpm::stable_time_step<2>(fp::parse_scene(kGood, "g.toml"),
+                                       fp::parse_scene(kGood, "g.toml").particles, 1.0),
               limit, 1e-12 * limit);
   const std::string bad = with_dt(1.01 * limit);
   char expected[160];
@@ -422,7 +427,8 @@ TEST(Scene, FixedTimeStepAcceptedUpToTheHardLimit) {
 }
 
 TEST(Scene, ShippedDiskBounceLoads) {
-  const mpm::Problem<2> p = fp::load_scene(std::string(FRAGMPM_SOURCE_DIR) + "/scenes/disk-bounce.toml");
+  const mpm::Problem<2> p =
+      fp::load_scene(std::string(FRAGMPM_SOURCE_DIR) + "/scenes/disk-bounce.toml");
   ASSERT_EQ(p.body_names.size(), 1u);
   double area = 0.0;
   for (double v : p.particles.volume0) area += v;
@@ -444,20 +450,24 @@ TEST(Scene, MissingFileIsASceneErrorWithoutLine) {
   } catch (const fp::SceneError& e) {
     EXPECT_EQ(e.line, 0);
     EXPECT_EQ(e.file, "/nonexistent/dir/scene.toml");
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/scene.toml: cannot open scene file"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/scene.toml: cannot open scene file"),
+              std::string::npos)
         << e.what();
   }
 }
 
 TEST(SceneShapes, PolygonSimplicity) {
   using V = Eigen::Vector2d;
-  EXPECT_EQ(fp::polygon_self_intersection({V(0, 0), V(1, 0), V(1, 1), V(0, 1)}), std::make_pair(-1, -1));
+  EXPECT_EQ(fp::polygon_self_intersection({V(0, 0), V(1, 0), V(1, 1), V(0, 1)}),
+            std::make_pair(-1, -1));
   // Bow tie: edges 0 (v0-v1) and 2 (v2-v3) cross.
-  EXPECT_EQ(fp::polygon_self_intersection({V(0, 0), V(1, 1), V(1, 0), V(0, 1)}), std::make_pair(0, 2));
+  EXPECT_EQ(fp::polygon_self_intersection({V(0, 0), V(1, 1), V(1, 0), V(0, 1)}),
+            std::make_pair(0, 2));
   // Spike folding back along itself.
   EXPECT_EQ(fp::polygon_self_intersection({V(0, 0), V(2, 0), V(1, 0), V(0, 1)}).first, 0);
   // Repeated vertex.
-  EXPECT_EQ(fp::polygon_self_intersection({V(0, 0), V(1, 0), V(1, 0), V(0, 1)}), std::make_pair(1, 1));
+  EXPECT_EQ(fp::polygon_self_intersection({V(0, 0), V(1, 0), V(1, 0), V(0, 1)}),
+            std::make_pair(1, 1));
   EXPECT_DOUBLE_EQ(fp::polygon_area({V(0, 0), V(0, 2), V(3, 2), V(3, 0)}), 6.0);
 }
 
@@ -471,9 +481,11 @@ struct BadScene {
   std::string explanation;  ///< a piece of the message
 };
 
-/// gtest prints each parameter beside the test name (and CMake's test discovery copies that into the
-/// ctest name): the case name instead of a byte dump of the struct.
-inline void PrintTo(const BadScene& c, std::ostream* os) { *os << c.name; }
+/// gtest prints each parameter beside the test name (and CMake's test discovery copies that into
+/// the ctest name): the case name instead of a byte dump of the struct.
+inline void PrintTo(const BadScene& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class BadSceneTest : public testing::TestWithParam<BadScene> {};
 
@@ -494,38 +506,47 @@ std::string with_second_body(const std::string& body) {
 
 std::vector<BadScene> bad_scenes() {
   return {
-      {"unknown_key", replace(kGood, "cfl = 0.5", "cfl = 0.5\ncfl_max = 1"), "cfl_max", "time.cfl_max",
-       "unknown key: expected one of cfl, dt, pic_fraction, thermal_pic_fraction"},
-      {"thermal_pic_fraction_above_one", replace(kGood, "cfl = 0.5", "cfl = 0.5\nthermal_pic_fraction = 1.5"),
-       "thermal_pic_fraction", "time.thermal_pic_fraction", "0 <= thermal_pic_fraction <= 1"},
+      {"unknown_key", replace(kGood, "cfl = 0.5", "cfl = 0.5\ncfl_max = 1"), "cfl_max",
+       "time.cfl_max", "unknown key: expected one of cfl, dt, pic_fraction, thermal_pic_fraction"},
+      {"thermal_pic_fraction_above_one",
+       replace(kGood, "cfl = 0.5", "cfl = 0.5\nthermal_pic_fraction = 1.5"), "thermal_pic_fraction",
+       "time.thermal_pic_fraction", "0 <= thermal_pic_fraction <= 1"},
       {"misspelt_key", replace(kGood, "cell_size =", "cel_size ="), "cel_size", "grid.cel_size",
        "did you mean 'cell_size'"},
       {"unknown_table", kGood + "\n[solver]\norder = 2\n", "[solver]", "solver", "unknown key"},
-      {"missing_key", replace(kGood, "density = \"2.3 g/cm3\"\n", ""), "[[materials]]", "materials[0].density",
-       "missing required key: expected a density"},
+      {"missing_key", replace(kGood, "density = \"2.3 g/cm3\"\n", ""), "[[materials]]",
+       "materials[0].density", "missing required key: expected a density"},
       {"wrong_unit", replace(kGood, "\"70 GPa\"", "\"5 m\""), "E = ", "materials[0].E",
        "expected a pressure (SI unit Pa, e.g. \"50 GPa\"), got \"5 m\", which is a length"},
-      {"unparseable_quantity", replace(kGood, "\"70 GPa\"", "\"seventy GPa\""), "E = ", "materials[0].E",
-       "does not start with a number"},
-      {"unknown_unit", replace(kGood, "\"0.5 mm\"", "\"0.5 furlong\""), "cell_size", "grid.cell_size",
-       "unknown unit 'furlong'"},
+      {"unparseable_quantity", replace(kGood, "\"70 GPa\"", "\"seventy GPa\""),
+       "E = ", "materials[0].E", "does not start with a number"},
+      {"unknown_unit", replace(kGood, "\"0.5 mm\"", "\"0.5 furlong\""), "cell_size",
+       "grid.cell_size", "unknown unit 'furlong'"},
       {"nu_incompressible", replace(kGood, "nu = 0.22", "nu = 0.5"), "nu = ", "materials[0].nu",
        "expected a Poisson's ratio -1 < nu < 0.5, got 0.5"},
-      {"nu_below_minus_one", replace(kGood, "nu = 0.22", "nu = -1"), "nu = ", "materials[0].nu", "got -1"},
+      {"nu_below_minus_one", replace(kGood, "nu = 0.22", "nu = -1"), "nu = ", "materials[0].nu",
+       "got -1"},
       {"negative_modulus", replace(kGood, "\"70 GPa\"", "\"-70 GPa\""), "E = ", "materials[0].E",
        "expected a positive Young's modulus, got \"-70 GPa\""},
-      {"negative_bulk_modulus", replace(kGood, "E = \"70 GPa\"\nnu = 0.22", "K = \"-1 GPa\"\nG = \"1 GPa\""), "K = ",
-       "materials[0].K", "positive bulk modulus"},
-      {"both_elastic_pairs", replace(kGood, "nu = 0.22", "nu = 0.22\nG = \"1 GPa\""), "G = ", "materials[0].G",
-       "either (E, nu) or (K, G)"},
-      {"zero_density", replace(kGood, "\"2.3 g/cm3\"", "0"), "density", "materials[0].density", "positive density"},
-      {"unknown_model", replace(kGood, "name = \"glass\"", "name = \"glass\"\nmodel = \"mooney\""), "mooney",
-       "materials[0].model", "neo-hookean"},
-      {"unknown_material", replace(kGood, "material = \"glass\"", "material = \"steel\""), "material = ",
-       "bodies[0].material", "expected the name of a material defined in [[materials]] (\"glass\")"},
-      {"duplicate_body", with_second_body("name = \"block\" # again\nmaterial = \"glass\"\n" + kBox), "# again",
-       "bodies[1].name", "already defined at line " + std::to_string(line_of(kGood, "name = \"block\""))},
-      {"duplicate_material", replace(kGood, "[[bodies]]", "[[materials]]\nname = \"glass\" # twice\nK = 1\nG = 1\ndensity = 1\n\n[[bodies]]"),
+      {"negative_bulk_modulus",
+       replace(kGood, "E = \"70 GPa\"\nnu = 0.22", "K = \"-1 GPa\"\nG = \"1 GPa\""),
+       "K = ", "materials[0].K", "positive bulk modulus"},
+      {"both_elastic_pairs", replace(kGood, "nu = 0.22", "nu = 0.22\nG = \"1 GPa\""),
+       "G = ", "materials[0].G", "either (E, nu) or (K, G)"},
+      {"zero_density", replace(kGood, "\"2.3 g/cm3\"", "0"), "density", "materials[0].density",
+       "positive density"},
+      {"unknown_model", replace(kGood, "name = \"glass\"", "name = \"glass\"\nmodel = \"mooney\""),
+       "mooney", "materials[0].model", "neo-hookean"},
+      {"unknown_material", replace(kGood, "material = \"glass\"", "material = \"steel\""),
+       "material = ", "bodies[0].material",
+       "expected the name of a material defined in [[materials]] (\"glass\")"},
+      {"duplicate_body",
+       with_second_body("name = \"block\" # again\nmaterial = \"glass\"\n" + kBox), "# again",
+       "bodies[1].name",
+       "already defined at line " + std::to_string(line_of(kGood, "name = \"block\""))},
+      {"duplicate_material",
+       replace(kGood, "[[bodies]]",
+               "[[materials]]\nname = \"glass\" # twice\nK = 1\nG = 1\ndensity = 1\n\n[[bodies]]"),
        "# twice", "materials[1].name", "already defined"},
       {"empty_body", with_second_body(R"(name = "speck"
 material = "glass"
@@ -533,10 +554,12 @@ shape = "disk"
 center = ["10 mm", "10 mm"]
 radius = "0.05 mm")"),
        "0.05 mm", "bodies[1].radius", "smaller than the particle spacing h/n = 0.00025 m"},
-      {"hidden_body", with_second_body("name = \"inner\"\nmaterial = \"glass\"\nshape = \"box\"\n"
-                                       "min = [\"3 mm\", \"2.5 mm\"]\nmax = [\"4 mm\", \"3 mm\"]"),
+      {"hidden_body",
+       with_second_body("name = \"inner\"\nmaterial = \"glass\"\nshape = \"box\"\n"
+                        "min = [\"3 mm\", \"2.5 mm\"]\nmax = [\"4 mm\", \"3 mm\"]"),
        "# second", "bodies[1]", "lie inside earlier bodies ('block')"},
-      {"box_outside_grid", replace(kGood, "max = [\"6 mm\", \"4 mm\"]", "max = [\"21 mm\", \"4 mm\"]"), "21 mm",
+      {"box_outside_grid",
+       replace(kGood, "max = [\"6 mm\", \"4 mm\"]", "max = [\"21 mm\", \"4 mm\"]"), "21 mm",
        "bodies[0].max", "extends 0.001 m outside it, above grid.max in x"},
       {"disk_outside_grid", with_second_body(R"(name = "ball"
 material = "glass"
@@ -546,62 +569,84 @@ radius = "4 mm")"),
        "-2 mm", "bodies[1].center", "extends 0.006 m outside it, below grid.min in y"},
       {"zero_cell_size", replace(kGood, "\"0.5 mm\"", "\"0 mm\""), "cell_size", "grid.cell_size",
        "expected a positive length, got \"0 mm\""},
-      {"cell_larger_than_domain", replace(kGood, "\"0.5 mm\"", "\"30 mm\""), "cell_size", "grid.cell_size",
-       "no larger than the domain (0.02 m x 0.02 m)"},
-      {"max_not_above_min", replace(kGood, "max = [\"20 mm\", \"20 mm\"]", "max = [\"20 mm\", \"0 mm\"]"),
+      {"cell_larger_than_domain", replace(kGood, "\"0.5 mm\"", "\"30 mm\""), "cell_size",
+       "grid.cell_size", "no larger than the domain (0.02 m x 0.02 m)"},
+      {"max_not_above_min",
+       replace(kGood, "max = [\"20 mm\", \"20 mm\"]", "max = [\"20 mm\", \"0 mm\"]"),
        "max = [\"20 mm\", \"0 mm\"]", "grid.max", "expected max > min"},
-      {"vector_wrong_length", replace(kGood, "min = [\"0 mm\", \"0 mm\"]", "min = [\"0 mm\"]"), "min = [\"0 mm\"]",
-       "grid.min", "expected an array of 2 components"},
-      {"wrong_unit_in_vector", replace(kGood, "\"-9.81 m/s2\"", "\"-9.81 m/s\""), "gravity", "physics.gravity[1]",
-       "expected an acceleration"},
-      {"unknown_shape_function", replace(kGood, "max = [\"20 mm\", \"20 mm\"]", "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"quadratic\""),
+      {"vector_wrong_length", replace(kGood, "min = [\"0 mm\", \"0 mm\"]", "min = [\"0 mm\"]"),
+       "min = [\"0 mm\"]", "grid.min", "expected an array of 2 components"},
+      {"wrong_unit_in_vector", replace(kGood, "\"-9.81 m/s2\"", "\"-9.81 m/s\""), "gravity",
+       "physics.gravity[1]", "expected an acceleration"},
+      {"unknown_shape_function",
+       replace(kGood, "max = [\"20 mm\", \"20 mm\"]",
+               "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"quadratic\""),
        "quadratic", "grid.shape_function", "one of \"cpdi\", \"linear\", \"ugimp\""},
-      {"particles_per_cell_zero", replace(kGood, "max = [\"20 mm\", \"20 mm\"]", "max = [\"20 mm\", \"20 mm\"]\nparticles_per_cell = 0"),
+      {"particles_per_cell_zero",
+       replace(kGood, "max = [\"20 mm\", \"20 mm\"]",
+               "max = [\"20 mm\", \"20 mm\"]\nparticles_per_cell = 0"),
        "particles_per_cell", "grid.particles_per_cell", "an integer from 1 to 16"},
-      {"unknown_shape", replace(kGood, "shape = \"box\"", "shape = \"circle\""), "circle", "bodies[0].shape",
-       "one of \"disk\", \"box\", \"polygon\""},
-      {"key_of_other_shape", replace(kGood, "shape = \"box\"", "shape = \"box\"\nradius = \"1 mm\""), "radius",
+      {"unknown_shape", replace(kGood, "shape = \"box\"", "shape = \"circle\""), "circle",
+       "bodies[0].shape", "one of \"disk\", \"box\", \"polygon\""},
+      {"key_of_other_shape",
+       replace(kGood, "shape = \"box\"", "shape = \"box\"\nradius = \"1 mm\""), "radius",
        "bodies[0].radius", "unknown key"},
-      {"self_intersecting_polygon", replace(kGood, kBox, "shape = \"polygon\"\nvertices = [[0.002, 0.002], [0.004, 0.004], [0.004, 0.002], [0.002, 0.004]]"),
-       "vertices", "bodies[0].vertices", "expected a simple polygon, got edges between vertices 0-1 and 2-3"},
-      {"unknown_wall_kind", replace(kGood, "friction = 0.2", "kind = \"sticky\""), "sticky", "walls[0].kind",
-       "one of \"contact\", \"roller\", \"fixed\""},
-      {"zero_normal", replace(kGood, "normal = [0, 2]", "normal = [0, 0.0]"), "normal", "walls[0].normal",
-       "expected a non-zero normal vector"},
-      {"negative_friction", replace(kGood, "friction = 0.2", "friction = -0.1"), "friction", "walls[0].friction",
-       "friction coefficient >= 0, got -0.1"},
-      {"friction_on_fixed_wall", replace(kGood, "friction = 0.2", "kind = \"fixed\"\nfriction = 0.2"), "friction",
+      {"self_intersecting_polygon",
+       replace(kGood, kBox,
+               "shape = \"polygon\"\nvertices = [[0.002, 0.002], [0.004, 0.004], [0.004, 0.002], "
+               "[0.002, 0.004]]"),
+       "vertices", "bodies[0].vertices",
+       "expected a simple polygon, got edges between vertices 0-1 and 2-3"},
+      {"unknown_wall_kind", replace(kGood, "friction = 0.2", "kind = \"sticky\""), "sticky",
+       "walls[0].kind", "one of \"contact\", \"roller\", \"fixed\""},
+      {"zero_normal", replace(kGood, "normal = [0, 2]", "normal = [0, 0.0]"), "normal",
+       "walls[0].normal", "expected a non-zero normal vector"},
+      {"negative_friction", replace(kGood, "friction = 0.2", "friction = -0.1"), "friction",
+       "walls[0].friction", "friction coefficient >= 0, got -0.1"},
+      {"friction_on_fixed_wall",
+       replace(kGood, "friction = 0.2", "kind = \"fixed\"\nfriction = 0.2"), "friction",
        "walls[0].friction", "contact walls only"},
-      {"unknown_velocity_type", replace(kGood, "friction = 0.2", "velocity = { type = \"jerk\" }"), "jerk",
-       "walls[0].velocity.type", "one of \"constant\", \"ramp\", \"sinusoid\""},
+      {"unknown_velocity_type", replace(kGood, "friction = 0.2", "velocity = { type = \"jerk\" }"),
+       "jerk", "walls[0].velocity.type", "one of \"constant\", \"ramp\", \"sinusoid\""},
       {"ramp_ends_before_start",
        replace(kGood, "friction = 0.2",
-               "velocity = { type = \"ramp\", from = [0, 0], to = [0, 1], t_start = \"2 ms\", t_end = \"1 ms\" }"),
+               "velocity = { type = \"ramp\", from = [0, 0], to = [0, 1], t_start = \"2 ms\", "
+               "t_end = \"1 ms\" }"),
        "ramp", "walls[0].velocity.t_end", "t_end > t_start = 0.002 s"},
       {"wall_region_inverted",
-       replace(kGood, "friction = 0.2", "region = { min = [\"5 mm\", \"0 mm\"], max = [\"1 mm\", \"9 mm\"] }"),
+       replace(kGood, "friction = 0.2",
+               "region = { min = [\"5 mm\", \"0 mm\"], max = [\"1 mm\", \"9 mm\"] }"),
        "region", "walls[0].region.max", "a corner above and to the right of min"},
       {"walls_not_an_array", replace(kGood, "[[walls]]", "[walls]"), "[walls]", "walls",
        "expected at least one [[walls]] table, got a table"},
       {"no_stop_condition", replace(kGood, "end_time = \"250 us\"\n", ""), "[stop]", "stop",
        "no stop condition: expected at least one of end_time, max_steps, platen_displacement"},
-      {"missing_stop_table", replace(kGood, "[stop]\nend_time = \"250 us\"\n", ""), "# test scene", "stop",
-       "missing required table [stop]"},
-      {"platen_unknown_wall", replace(kGood, "end_time = \"250 us\"", "platen_displacement = \"1 mm\"\nplaten = \"lid\""),
+      {"missing_stop_table", replace(kGood, "[stop]\nend_time = \"250 us\"\n", ""), "# test scene",
+       "stop", "missing required table [stop]"},
+      {"platen_unknown_wall",
+       replace(kGood, "end_time = \"250 us\"", "platen_displacement = \"1 mm\"\nplaten = \"lid\""),
        "platen = ", "stop.platen", "a wall defined in [[walls]] (\"floor\"), got \"lid\""},
-      {"platen_displacement_without_platen", replace(kGood, "end_time = \"250 us\"", "platen_displacement = \"1 mm\""),
-       "[stop]", "stop.platen", "platen_displacement needs platen"},
-      {"platen_never_moves", replace(kGood, "end_time = \"250 us\"", "platen_displacement = \"1 mm\"\nplaten = \"floor\""),
+      {"platen_displacement_without_platen",
+       replace(kGood, "end_time = \"250 us\"", "platen_displacement = \"1 mm\""), "[stop]",
+       "stop.platen", "platen_displacement needs platen"},
+      {"platen_never_moves",
+       replace(kGood, "end_time = \"250 us\"",
+               "platen_displacement = \"1 mm\"\nplaten = \"floor\""),
        "platen = ", "stop.platen", "velocity is zero at all times"},
-      {"unknown_output_field", kGood + "[output]\nfields = [\"x\",\n  \"temprature\"]\n", "temprature",
-       "output.fields[1]", "got \"temprature\""},
-      {"number_expected", replace(kGood, "cfl = 0.5", "cfl = \"fast\""), "cfl", "time.cfl", "expected a number, got \"fast\""},
-      {"cfl_out_of_range", replace(kGood, "cfl = 0.5", "cfl = 1.5"), "cfl", "time.cfl", "0 < cfl <= 1"},
-      {"toml_syntax", replace(kGood, "nu = 0.22", "nu = = 0.22"), "nu = =", "", "TOML syntax error"},
+      {"unknown_output_field", kGood + "[output]\nfields = [\"x\",\n  \"temprature\"]\n",
+       "temprature", "output.fields[1]", "got \"temprature\""},
+      {"number_expected", replace(kGood, "cfl = 0.5", "cfl = \"fast\""), "cfl", "time.cfl",
+       "expected a number, got \"fast\""},
+      {"cfl_out_of_range", replace(kGood, "cfl = 0.5", "cfl = 1.5"), "cfl", "time.cfl",
+       "0 < cfl <= 1"},
+      {"toml_syntax", replace(kGood, "nu = 0.22", "nu = = 0.22"), "nu = =", "",
+       "TOML syntax error"},
   };
 }
 
 }  // namespace
 
 INSTANTIATE_TEST_SUITE_P(Scene, BadSceneTest, testing::ValuesIn(bad_scenes()),
-                         [](const testing::TestParamInfo<BadScene>& info) { return std::string(info.param.name); });
+                         [](const testing::TestParamInfo<BadScene>& info) {
+                           return std::string(info.param.name);
+                         });

@@ -8,11 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <string>
-#include <variant>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <variant>
 
 #include "fragmpm/mpm/damage_law.hpp"
 #include "fragmpm/pipeline/scene.hpp"
@@ -64,15 +63,19 @@ std::string replace(std::string text, const std::string& from, const std::string
 }
 
 std::string with_material_keys(const std::string& keys) {
-  return replace(kScene, "damage = \"rankine\"\nstrength = \"50 MPa\"\nfracture_energy = \"0.02 N/mm\"", keys);
+  return replace(
+      kScene, "damage = \"rankine\"\nstrength = \"50 MPa\"\nfracture_energy = \"0.02 N/mm\"", keys);
 }
 
-std::string with_contact(const std::string& table) { return replace(kScene, "[stop]", table + "\n\n[stop]"); }
+std::string with_contact(const std::string& table) {
+  return replace(kScene, "[stop]", table + "\n\n[stop]");
+}
 
 int line_of(const std::string& text, const std::string& marker) {
   const auto at = text.find(marker);
   EXPECT_NE(at, std::string::npos) << "test setup: marker '" << marker << "' not in scene";
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+  return 1 + static_cast<int>(
+                 std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
 /// A bad scene must give a SceneError at the line of `marker`, for `key`, containing `explanation`.
@@ -86,7 +89,9 @@ void expect_scene_error(const std::string& text, const std::string& marker, cons
     const std::string what = e.what();
     EXPECT_EQ(e.line, line) << what;
     EXPECT_EQ(e.key, key) << what;
-    EXPECT_NE(what.find("bad.toml:" + std::to_string(line) + ": key '" + key + "'"), std::string::npos) << what;
+    EXPECT_NE(what.find("bad.toml:" + std::to_string(line) + ": key '" + key + "'"),
+              std::string::npos)
+        << what;
     EXPECT_NE(what.find(explanation), std::string::npos) << what;
   }
 }
@@ -106,8 +111,8 @@ TEST(SceneFracture, RankineMaterialInSIUnitsAndUniformStrength) {
   const mpm::MaterialSpec& m = p.materials.at(0);
   ASSERT_TRUE(std::holds_alternative<mpm::RankineSoftening>(m.damage));
   const auto& r = std::get<mpm::RankineSoftening>(m.damage);
-  EXPECT_NEAR(r.fracture_energy, 20.0, 1e-12);   // "0.02 N/mm" = 20 J/m²
-  EXPECT_NEAR(r.youngs_modulus, 70e9, 1e-3);     // E back from K and G
+  EXPECT_NEAR(r.fracture_energy, 20.0, 1e-12);  // "0.02 N/mm" = 20 J/m²
+  EXPECT_NEAR(r.youngs_modulus, 70e9, 1e-3);    // E back from K and G
   EXPECT_DOUBLE_EQ(m.strength, 50e6);
   EXPECT_EQ(m.degradation, mpm::Degradation::tensile_spectral);  // the default
   EXPECT_FALSE(m.weibull);
@@ -117,23 +122,27 @@ TEST(SceneFracture, RankineMaterialInSIUnitsAndUniformStrength) {
 
 TEST(SceneFracture, TimeToFailureIsotropicAndNoDamage) {
   const std::string text = with_material_keys(
-      "damage = \"time-to-failure\"\nstrength = \"30 MPa\"\ncrack_speed = \"1.5 km/s\"\ndegradation = \"isotropic\"");
+      "damage = \"time-to-failure\"\nstrength = \"30 MPa\"\ncrack_speed = \"1.5 "
+      "km/s\"\ndegradation = \"isotropic\"");
   const mpm::Problem<2> p = fp::parse_scene(text, "ttf.toml");
   ASSERT_TRUE(std::holds_alternative<mpm::TimeToFailure>(p.materials[0].damage));
   EXPECT_DOUBLE_EQ(std::get<mpm::TimeToFailure>(p.materials[0].damage).crack_speed, 1500.0);
   EXPECT_EQ(p.materials[0].degradation, mpm::Degradation::isotropic);
   for (double s : p.particles.strength) EXPECT_EQ(s, 30e6);
 
-  const mpm::Problem<2> elastic = fp::parse_scene(with_material_keys("damage = \"none\""), "elastic.toml");
+  const mpm::Problem<2> elastic =
+      fp::parse_scene(with_material_keys("damage = \"none\""), "elastic.toml");
   EXPECT_FALSE(elastic.materials[0].damages());
   for (double s : elastic.particles.strength) EXPECT_TRUE(std::isinf(s));
 }
 
 TEST(SceneFracture, WeibullStrengthsAreSeededPerParticleDraws) {
-  const std::string weibull = "damage = \"time-to-failure\"\ncrack_speed = \"2000 m/s\"\n"
-                              "weibull = { reference_strength = \"100 MPa\", reference_volume = \"1 mm3\", modulus = 6, seed = 7 }";
-  const std::string text =
-      replace(with_material_keys(weibull), "[[materials]]", "[physics]\nthickness = \"2 mm\"\n\n[[materials]]");
+  const std::string weibull =
+      "damage = \"time-to-failure\"\ncrack_speed = \"2000 m/s\"\n"
+      "weibull = { reference_strength = \"100 MPa\", reference_volume = \"1 mm3\", modulus = 6, "
+      "seed = 7 }";
+  const std::string text = replace(with_material_keys(weibull), "[[materials]]",
+                                   "[physics]\nthickness = \"2 mm\"\n\n[[materials]]");
   const mpm::Problem<2> p = fp::parse_scene(text, "weibull.toml");
   const mpm::MaterialSpec& m = p.materials[0];
   ASSERT_TRUE(m.weibull);
@@ -142,35 +151,44 @@ TEST(SceneFracture, WeibullStrengthsAreSeededPerParticleDraws) {
   EXPECT_EQ(m.weibull_strength.modulus, 6.0);
   EXPECT_EQ(m.weibull_strength.seed, 7u);
   EXPECT_DOUBLE_EQ(m.weibull_strength.thickness, 2e-3);
-  // Exactly the draws of weibull_strengths over the particles' areas × thickness, in particle order.
-  EXPECT_EQ(p.particles.strength, mpm::weibull_strengths(p.particles.volume0, m.weibull_strength, 2));
+  // Exactly the draws of weibull_strengths over the particles' areas × thickness, in particle
+  // order.
+  EXPECT_EQ(p.particles.strength,
+            mpm::weibull_strengths(p.particles.volume0, m.weibull_strength, 2));
   // Particle volume 0.25 mm × 0.25 mm × 2 mm = 0.125 mm³ → median 100 MPa × 8^{1/6} = 141.4 MPa.
-  EXPECT_NEAR(mpm::weibull_median_strength(p.particles.volume0[0], m.weibull_strength, 2), 100e6 * std::pow(8.0, 1.0 / 6.0),
-              1.0);
+  EXPECT_NEAR(mpm::weibull_median_strength(p.particles.volume0[0], m.weibull_strength, 2),
+              100e6 * std::pow(8.0, 1.0 / 6.0), 1.0);
   std::vector<double> s = p.particles.strength;
   EXPECT_GT(*std::max_element(s.begin(), s.end()), *std::min_element(s.begin(), s.end()));
   // Reproducible; another seed draws other strengths.
   EXPECT_EQ(fp::parse_scene(text, "again.toml").particles.strength, p.particles.strength);
-  EXPECT_NE(fp::parse_scene(replace(text, "seed = 7", "seed = 8"), "other.toml").particles.strength, p.particles.strength);
+  EXPECT_NE(fp::parse_scene(replace(text, "seed = 7", "seed = 8"), "other.toml").particles.strength,
+            p.particles.strength);
 
   // σ̄_f may come from `strength` instead (or both, when they agree); the seed defaults to 0.
-  const std::string from_strength = replace(
-      replace(text, "reference_strength = \"100 MPa\", ", ""), "crack_speed =", "strength = \"0.1 GPa\"\ncrack_speed =");
-  const mpm::Problem<2> q = fp::parse_scene(replace(from_strength, ", seed = 7", ""), "strength.toml");
+  const std::string from_strength =
+      replace(replace(text, "reference_strength = \"100 MPa\", ", ""),
+              "crack_speed =", "strength = \"0.1 GPa\"\ncrack_speed =");
+  const mpm::Problem<2> q =
+      fp::parse_scene(replace(from_strength, ", seed = 7", ""), "strength.toml");
   EXPECT_DOUBLE_EQ(q.materials[0].weibull_strength.reference_strength, 100e6);
   EXPECT_EQ(q.materials[0].weibull_strength.seed, 0u);
-  const mpm::Problem<2> both = fp::parse_scene(replace(text, "crack_speed =", "strength = \"100 MPa\"\ncrack_speed ="), "both.toml");
+  const mpm::Problem<2> both = fp::parse_scene(
+      replace(text, "crack_speed =", "strength = \"100 MPa\"\ncrack_speed ="), "both.toml");
   EXPECT_EQ(both.particles.strength, p.particles.strength);
 }
 
 TEST(SceneFracture, SnapBackNamesTheLargestAdmissibleCellSize) {
   // G_f = 10 J/m²: l_max = 2 E G_f / σ_f² = 0.56 mm, so h_max = 2 l_max = 1.12 mm < h = 1.5 mm.
-  const std::string text =
-      replace(replace(kScene, "\"0.02 N/mm\"", "\"10 J/m2\""), "cell_size = \"0.5 mm\"", "cell_size = \"1.5 mm\"");
-  expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy", "cell too coarse for this material (snap-back)");
-  expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy", "the largest admissible cell size is 0.00112 m");
+  const std::string text = replace(replace(kScene, "\"0.02 N/mm\"", "\"10 J/m2\""),
+                                   "cell_size = \"0.5 mm\"", "cell_size = \"1.5 mm\"");
+  expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy",
+                     "cell too coarse for this material (snap-back)");
+  expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy",
+                     "the largest admissible cell size is 0.00112 m");
   // At h = 1 mm the same material is fine.
-  const mpm::Problem<2> p = fp::parse_scene(replace(text, "cell_size = \"1.5 mm\"", "cell_size = \"1 mm\""), "fine.toml");
+  const mpm::Problem<2> p =
+      fp::parse_scene(replace(text, "cell_size = \"1.5 mm\"", "cell_size = \"1 mm\""), "fine.toml");
   EXPECT_TRUE(p.materials[0].damages());
 }
 
@@ -203,33 +221,38 @@ normal = [3, 4])"),
   EXPECT_NEAR(p.contact.normal.y(), 0.8, 1e-15);
 
   auto contact_friction = [&](const std::string& table) {
-    return fp::parse_scene(with_contact("[contact]\nfriction = " + table), "law.toml").contact.friction;
+    return fp::parse_scene(with_contact("[contact]\nfriction = " + table), "law.toml")
+        .contact.friction;
   };
   {
     const auto f = contact_friction(R"({ law = "coulomb", mu = 0.4 })");
     EXPECT_EQ(std::get<mpm::CoulombFriction>(f).coefficient, 0.4);
   }
   {
-    const auto f = contact_friction(R"({ law = "velocity-dependent", mu = 0.3, slope = "0.02 s/m" })");
+    const auto f =
+        contact_friction(R"({ law = "velocity-dependent", mu = 0.3, slope = "0.02 s/m" })");
     EXPECT_EQ(std::get<mpm::VelocityDependentFriction>(f).coefficient, 0.3);
     EXPECT_DOUBLE_EQ(std::get<mpm::VelocityDependentFriction>(f).slope, 0.02);
   }
   {
-    const auto f = contact_friction(R"({ law = "adhesion", mu = 0.2, shear_strength = "2 MPa", tensile_strength = "1 MPa" })");
+    const auto f = contact_friction(
+        R"({ law = "adhesion", mu = 0.2, shear_strength = "2 MPa", tensile_strength = "1 MPa" })");
     const auto& a = std::get<mpm::AdhesiveFriction>(f);
     EXPECT_EQ(a.coefficient, 0.2);
     EXPECT_DOUBLE_EQ(a.shear_strength, 2e6);
     EXPECT_DOUBLE_EQ(a.tensile_strength, 1e6);
   }
   {
-    const auto f = contact_friction(R"({ law = "static-dynamic", mu_static = 0.6, mu_dynamic = 0.3, half_velocity = "10 cm/s" })");
+    const auto f = contact_friction(
+        R"({ law = "static-dynamic", mu_static = 0.6, mu_dynamic = 0.3, half_velocity = "10 cm/s" })");
     const auto& s = std::get<mpm::SmoothStaticDynamicFriction>(f);
     EXPECT_EQ(s.static_coefficient, 0.6);
     EXPECT_EQ(s.dynamic_coefficient, 0.3);
     EXPECT_DOUBLE_EQ(s.half_velocity, 0.1);
   }
   {
-    const auto f = contact_friction(R"({ law = "thermal-softening", mu = 0.4, theta_ref = "20 C", theta_dam = "800 C" })");
+    const auto f = contact_friction(
+        R"({ law = "thermal-softening", mu = 0.4, theta_ref = "20 C", theta_dam = "800 C" })");
     const auto& t = std::get<mpm::ThermalSofteningFriction>(f);
     EXPECT_EQ(t.coefficient, 0.4);
     EXPECT_DOUBLE_EQ(t.reference_temperature, 293.15);
@@ -237,11 +260,15 @@ normal = [3, 4])"),
   }
   // Walls read the same number-or-table.
   const mpm::Problem<2> w = fp::parse_scene(
-      replace(kScene, "friction = 0.2", R"(friction = { law = "static-dynamic", mu_static = 0.5, mu_dynamic = 0.2, half_velocity = 0 })"),
+      replace(
+          kScene, "friction = 0.2",
+          R"(friction = { law = "static-dynamic", mu_static = 0.5, mu_dynamic = 0.2, half_velocity = 0 })"),
       "wall.toml");
-  EXPECT_EQ(std::get<mpm::SmoothStaticDynamicFriction>(w.walls[0].friction).static_coefficient, 0.5);
+  EXPECT_EQ(std::get<mpm::SmoothStaticDynamicFriction>(w.walls[0].friction).static_coefficient,
+            0.5);
   // A table without `law` is Coulomb.
-  const mpm::Problem<2> c = fp::parse_scene(replace(kScene, "friction = 0.2", "friction = { mu = 0.15 }"), "c.toml");
+  const mpm::Problem<2> c =
+      fp::parse_scene(replace(kScene, "friction = 0.2", "friction = { mu = 0.15 }"), "c.toml");
   EXPECT_EQ(std::get<mpm::CoulombFriction>(c.walls[0].friction).coefficient, 0.15);
 }
 
@@ -266,7 +293,8 @@ traction = { times = ["0 us", "10 us", "20 us"], values = [[0, 0], ["-1 MPa", 0]
   EXPECT_EQ(top.name, "pull");
   // The top row of the 16 × 8 box: 16 particles, each with an edge of s = 0.25 mm; Σ a_p = 4 mm.
   ASSERT_EQ(top.particles.size(), 16u);
-  for (auto k : top.particles) EXPECT_NEAR(p.particles.x[static_cast<std::size_t>(k)].y(), 4e-3 - 0.125e-3, 1e-12);
+  for (auto k : top.particles)
+    EXPECT_NEAR(p.particles.x[static_cast<std::size_t>(k)].y(), 4e-3 - 0.125e-3, 1e-12);
   EXPECT_NEAR(sum(top.boundary_measure), 4e-3, 1e-15);
   EXPECT_DOUBLE_EQ(top.traction(123.0).y(), 2e6);
   // Left side: 8 particles, Σ a_p = 2 mm; the ramp peaks at 10 µs.
@@ -296,7 +324,8 @@ traction = [0, "1 MPa"]
   const mpm::Problem<2> p = fp::parse_scene(text, "region.toml");
   ASSERT_EQ(p.loads[0].particles.size(), 8u);
   EXPECT_NEAR(sum(p.loads[0].boundary_measure), 2e-3, 1e-15);
-  for (auto k : p.loads[0].particles) EXPECT_EQ(p.particles.surface[static_cast<std::size_t>(k)], 1);
+  for (auto k : p.loads[0].particles)
+    EXPECT_EQ(p.particles.surface[static_cast<std::size_t>(k)], 1);
   // Side and region together: the top row between x = 2 and 3 mm (4 particles).
   ASSERT_EQ(p.loads[1].particles.size(), 4u);
   EXPECT_NEAR(sum(p.loads[1].boundary_measure), 1e-3, 1e-15);
@@ -307,11 +336,13 @@ traction = [0, "1 MPa"]
 namespace {
 
 /// The rule every body source must satisfy, independent of how it was sampled: a particle is on the
-/// surface exactly when one of its eight lattice neighbours x + s (i, j) holds no particle of its own body.
+/// surface exactly when one of its eight lattice neighbours x + s (i, j) holds no particle of its
+/// own body.
 void expect_surface_rule(const mpm::Particles<2>& P, double s) {
   std::map<std::pair<long long, long long>, std::int32_t> at;
   auto cell = [&](const Eigen::Vector2d& x) {
-    return std::make_pair(std::llround(x.x() / s * 2.0), std::llround(x.y() / s * 2.0));  // half-spacing keys
+    return std::make_pair(std::llround(x.x() / s * 2.0),
+                          std::llround(x.y() / s * 2.0));  // half-spacing keys
   };
   for (std::size_t k = 0; k < P.size(); ++k) at[cell(P.x[k])] = P.body[k];
   std::size_t checked = 0;
@@ -323,7 +354,8 @@ void expect_surface_rule(const mpm::Particles<2>& P, double s) {
         const auto it = at.find(cell(P.x[k] + s * Eigen::Vector2d(i, j)));
         if (it == at.end() || it->second != P.body[k]) open = true;
       }
-    EXPECT_EQ(P.surface[k], open ? 1 : 0) << "particle " << k << " of body " << P.body[k] << " at " << P.x[k].transpose();
+    EXPECT_EQ(P.surface[k], open ? 1 : 0)
+        << "particle " << k << " of body " << P.body[k] << " at " << P.x[k].transpose();
     ++checked;
   }
   EXPECT_EQ(checked, P.size());
@@ -354,7 +386,8 @@ radius = "2 mm"
   // Both rows at the shared edge x = 6 mm are surfaces.
   std::size_t at_edge[2] = {0, 0};
   for (std::size_t k = 0; k < p.particles.size(); ++k)
-    if (std::abs(std::abs(p.particles.x[k].x() - 6e-3) - 0.125e-3) < 1e-9 && p.particles.body[k] < 2) {
+    if (std::abs(std::abs(p.particles.x[k].x() - 6e-3) - 0.125e-3) < 1e-9 &&
+        p.particles.body[k] < 2) {
       EXPECT_EQ(p.particles.surface[k], 1);
       ++at_edge[p.particles.body[k]];
     }
@@ -427,9 +460,11 @@ struct BadFractureScene {
   std::string explanation;
 };
 
-/// gtest prints each parameter beside the test name (and CMake's test discovery copies that into the
-/// ctest name): the case name instead of a byte dump of the struct.
-inline void PrintTo(const BadFractureScene& c, std::ostream* os) { *os << c.name; }
+/// gtest prints each parameter beside the test name (and CMake's test discovery copies that into
+/// the ctest name): the case name instead of a byte dump of the struct.
+inline void PrintTo(const BadFractureScene& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class BadFractureSceneTest : public testing::TestWithParam<BadFractureScene> {};
 
@@ -440,53 +475,66 @@ TEST_P(BadFractureSceneTest, NamesFileLineKeyAndWhatWasExpected) {
 
 namespace {
 
-std::string with_load(const std::string& load) { return replace(kScene, "[stop]", "[[loads]]\n" + load + "\n\n[stop]"); }
+std::string with_load(const std::string& load) {
+  return replace(kScene, "[stop]", "[[loads]]\n" + load + "\n\n[stop]");
+}
 
 std::vector<BadFractureScene> bad_scenes() {
-  const std::string weibull = "weibull = { reference_strength = \"100 MPa\", reference_volume = \"1 mm3\", modulus = 6 }";
+  const std::string weibull =
+      "weibull = { reference_strength = \"100 MPa\", reference_volume = \"1 mm3\", modulus = 6 }";
   return {
-      {"unknown_damage", replace(kScene, "\"rankine\"", "\"brittle\""), "damage", "materials[0].damage",
-       "one of \"none\", \"rankine\", \"time-to-failure\", got \"brittle\""},
-      {"strength_wrong_unit", replace(kScene, "\"50 MPa\"", "\"50 mm\""), "strength", "materials[0].strength",
-       "expected a pressure"},
-      {"negative_strength", replace(kScene, "\"50 MPa\"", "\"-5 MPa\""), "strength", "materials[0].strength",
-       "positive tensile strength"},
-      {"missing_strength", replace(kScene, "strength = \"50 MPa\"\n", ""), "[[materials]]", "materials[0].strength",
-       "missing required key: expected strength"},
-      {"missing_fracture_energy", replace(kScene, "fracture_energy = \"0.02 N/mm\"\n", ""), "[[materials]]",
-       "materials[0].fracture_energy", "missing required key"},
-      {"fracture_energy_wrong_unit", replace(kScene, "\"0.02 N/mm\"", "\"20 J\""), "fracture_energy",
-       "materials[0].fracture_energy", "expected an energy per area"},
-      {"zero_fracture_energy", replace(kScene, "\"0.02 N/mm\"", "0"), "fracture_energy", "materials[0].fracture_energy",
-       "positive fracture energy"},
-      {"unknown_friction_heating", with_contact("[contact]\nfriction_heating = \"third-order\""), "friction_heating",
-       "contact.friction_heating", "one of \"second-order\""},
-      {"unknown_nodal_gradient", with_contact("[contact]\nnodal_gradient = \"steepest\""), "nodal_gradient",
-       "contact.nodal_gradient", "one of \"principal\""},
+      {"unknown_damage", replace(kScene, "\"rankine\"", "\"brittle\""), "damage",
+       "materials[0].damage", "one of \"none\", \"rankine\", \"time-to-failure\", got \"brittle\""},
+      {"strength_wrong_unit", replace(kScene, "\"50 MPa\"", "\"50 mm\""), "strength",
+       "materials[0].strength", "expected a pressure"},
+      {"negative_strength", replace(kScene, "\"50 MPa\"", "\"-5 MPa\""), "strength",
+       "materials[0].strength", "positive tensile strength"},
+      {"missing_strength", replace(kScene, "strength = \"50 MPa\"\n", ""), "[[materials]]",
+       "materials[0].strength", "missing required key: expected strength"},
+      {"missing_fracture_energy", replace(kScene, "fracture_energy = \"0.02 N/mm\"\n", ""),
+       "[[materials]]", "materials[0].fracture_energy", "missing required key"},
+      {"fracture_energy_wrong_unit", replace(kScene, "\"0.02 N/mm\"", "\"20 J\""),
+       "fracture_energy", "materials[0].fracture_energy", "expected an energy per area"},
+      {"zero_fracture_energy", replace(kScene, "\"0.02 N/mm\"", "0"), "fracture_energy",
+       "materials[0].fracture_energy", "positive fracture energy"},
+      {"unknown_friction_heating", with_contact("[contact]\nfriction_heating = \"third-order\""),
+       "friction_heating", "contact.friction_heating", "one of \"second-order\""},
+      {"unknown_nodal_gradient", with_contact("[contact]\nnodal_gradient = \"steepest\""),
+       "nodal_gradient", "contact.nodal_gradient", "one of \"principal\""},
       {"negative_characteristic_length",
-       replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ncharacteristic_length = \"-1 mm\""),
+       replace(kScene, "damage = \"rankine\"",
+               "damage = \"rankine\"\ncharacteristic_length = \"-1 mm\""),
        "characteristic_length", "materials[0].characteristic_length", "a positive length l_ch"},
       // l_max = 2 E G_f / σ_f² = 1.12 mm for the glass: a given l_ch of 2 mm snaps back.
       {"characteristic_length_snap_back",
-       replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ncharacteristic_length = \"2 mm\""),
-       "characteristic_length", "materials[0].characteristic_length", "expected a characteristic length below 0.00112 m"},
-      {"crack_speed_with_rankine", replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ncrack_speed = 100"),
+       replace(kScene, "damage = \"rankine\"",
+               "damage = \"rankine\"\ncharacteristic_length = \"2 mm\""),
+       "characteristic_length", "materials[0].characteristic_length",
+       "expected a characteristic length below 0.00112 m"},
+      {"crack_speed_with_rankine",
+       replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ncrack_speed = 100"),
        "crack_speed", "materials[0].crack_speed", "only with damage = \"time-to-failure\""},
-      {"fracture_energy_with_ttf", replace(kScene, "damage = \"rankine\"", "damage = \"time-to-failure\"\ncrack_speed = 100"),
+      {"fracture_energy_with_ttf",
+       replace(kScene, "damage = \"rankine\"", "damage = \"time-to-failure\"\ncrack_speed = 100"),
        "fracture_energy", "materials[0].fracture_energy", "only with damage = \"rankine\""},
-      {"missing_crack_speed", replace(kScene, "damage = \"rankine\"\nstrength = \"50 MPa\"\nfracture_energy = \"0.02 N/mm\"",
-                                      "damage = \"time-to-failure\"\nstrength = \"50 MPa\""),
+      {"missing_crack_speed",
+       replace(kScene,
+               "damage = \"rankine\"\nstrength = \"50 MPa\"\nfracture_energy = \"0.02 N/mm\"",
+               "damage = \"time-to-failure\"\nstrength = \"50 MPa\""),
        "[[materials]]", "materials[0].crack_speed", "missing required key: expected a velocity"},
-      {"negative_crack_speed", with_material_keys("damage = \"time-to-failure\"\nstrength = 1e6\ncrack_speed = \"-3 m/s\""),
+      {"negative_crack_speed",
+       with_material_keys("damage = \"time-to-failure\"\nstrength = 1e6\ncrack_speed = \"-3 m/s\""),
        "crack_speed", "materials[0].crack_speed", "positive crack speed"},
-      {"strength_without_damage", with_material_keys("strength = \"50 MPa\""), "strength", "materials[0].strength",
-       "only with a damage law"},
-      {"unknown_degradation", replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ndegradation = \"spectral\""),
+      {"strength_without_damage", with_material_keys("strength = \"50 MPa\""), "strength",
+       "materials[0].strength", "only with a damage law"},
+      {"unknown_degradation",
+       replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ndegradation = \"spectral\""),
        "degradation", "materials[0].degradation", "one of \"tensile\""},
       {"strength_differs_from_weibull",
-       replace(replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\n" + weibull), "[[materials]]",
-               "[physics]\nthickness = \"1 mm\"\n\n[[materials]]"),
-       "weibull", "materials[0].weibull.reference_strength", "expected the material's strength = 5e+07 Pa"},
+       replace(replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\n" + weibull),
+               "[[materials]]", "[physics]\nthickness = \"1 mm\"\n\n[[materials]]"),
+       "weibull", "materials[0].weibull.reference_strength",
+       "expected the material's strength = 5e+07 Pa"},
       {"weibull_without_thickness",
        with_material_keys("damage = \"time-to-failure\"\ncrack_speed = 100\n" + weibull), "weibull",
        "materials[0].weibull", "missing [physics] thickness"},
@@ -500,72 +548,90 @@ std::vector<BadFractureScene> bad_scenes() {
                                   replace(weibull, "\"1 mm3\"", "\"1 mm2\"")),
                "[[materials]]", "[physics]\nthickness = \"1 mm\"\n\n[[materials]]"),
        "weibull", "materials[0].weibull.reference_volume", "expected a volume (SI unit m3"},
-      {"zero_thickness", replace(kScene, "[[materials]]", "[physics]\nthickness = 0\n\n[[materials]]"), "thickness",
+      {"zero_thickness",
+       replace(kScene, "[[materials]]", "[physics]\nthickness = 0\n\n[[materials]]"), "thickness",
        "physics.thickness", "positive out-of-plane thickness"},
-      {"snap_back", replace(kScene, "\"0.5 mm\"", "\"3 mm\""), "fracture_energy", "materials[0].fracture_energy",
-       "the largest admissible cell size is 0.00224 m"},
-      {"unknown_contact_key", with_contact("[contact]\nfrictoin = 1"), "frictoin", "contact.frictoin",
-       "unknown key (did you mean 'friction'?)"},
-      {"unknown_partitioning", with_contact("[contact]\npartitioning = \"on\""), "partitioning", "contact.partitioning",
-       "one of \"auto\", \"off\", \"bodies\""},
-      {"critical_damage_zero", with_contact("[contact]\ncritical_damage = 0"), "critical_damage", "contact.critical_damage",
-       "0 < D_cr <= 1"},
-      {"minimum_damage_one", with_contact("[contact]\nminimum_damage = 1"), "minimum_damage", "contact.minimum_damage",
-       "0 <= D_min < 1"},
+      {"snap_back", replace(kScene, "\"0.5 mm\"", "\"3 mm\""), "fracture_energy",
+       "materials[0].fracture_energy", "the largest admissible cell size is 0.00224 m"},
+      {"unknown_contact_key", with_contact("[contact]\nfrictoin = 1"), "frictoin",
+       "contact.frictoin", "unknown key (did you mean 'friction'?)"},
+      {"unknown_partitioning", with_contact("[contact]\npartitioning = \"on\""), "partitioning",
+       "contact.partitioning", "one of \"auto\", \"off\", \"bodies\""},
+      {"critical_damage_zero", with_contact("[contact]\ncritical_damage = 0"), "critical_damage",
+       "contact.critical_damage", "0 < D_cr <= 1"},
+      {"minimum_damage_one", with_contact("[contact]\nminimum_damage = 1"), "minimum_damage",
+       "contact.minimum_damage", "0 <= D_min < 1"},
       {"rebuild_fraction_big", with_contact("[contact]\nrebuild_fraction = 2"), "rebuild_fraction",
        "contact.rebuild_fraction", "0 <= rebuild_fraction <= 1"},
-      {"gap_test_not_bool", with_contact("[contact]\ngap_test = 1"), "gap_test", "contact.gap_test", "true or false"},
-      {"zero_contact_normal", with_contact("[contact]\nnormal = [0, 0]"), "normal = [0, 0]", "contact.normal",
-       "non-zero normal"},
-      {"friction_string", with_contact("[contact]\nfriction = \"rough\""), "rough", "contact.friction",
+      {"gap_test_not_bool", with_contact("[contact]\ngap_test = 1"), "gap_test", "contact.gap_test",
+       "true or false"},
+      {"zero_contact_normal", with_contact("[contact]\nnormal = [0, 0]"), "normal = [0, 0]",
+       "contact.normal", "non-zero normal"},
+      {"friction_string", with_contact("[contact]\nfriction = \"rough\""), "rough",
+       "contact.friction",
        "a Coulomb friction coefficient (a number >= 0) or a friction-law table"},
-      {"unknown_friction_law", with_contact("[contact]\nfriction = { law = \"viscous\", mu = 1 }"), "viscous",
-       "contact.friction.law", "one of \"coulomb\", \"velocity-dependent\""},
-      {"negative_mu_in_table", with_contact("[contact]\nfriction = { law = \"coulomb\", mu = -0.2 }"), "mu = -0.2",
+      {"unknown_friction_law", with_contact("[contact]\nfriction = { law = \"viscous\", mu = 1 }"),
+       "viscous", "contact.friction.law", "one of \"coulomb\", \"velocity-dependent\""},
+      {"negative_mu_in_table",
+       with_contact("[contact]\nfriction = { law = \"coulomb\", mu = -0.2 }"), "mu = -0.2",
        "contact.friction.mu", "friction coefficient >= 0, got -0.2"},
-      {"key_of_other_law", with_contact("[contact]\nfriction = { law = \"coulomb\", mu = 0.2, slope = 1 }"), "slope",
+      {"key_of_other_law",
+       with_contact("[contact]\nfriction = { law = \"coulomb\", mu = 0.2, slope = 1 }"), "slope",
        "contact.friction.slope", "unknown key"},
-      {"slope_wrong_unit", with_contact("[contact]\nfriction = { law = \"velocity-dependent\", mu = 0.2, slope = \"1 m/s\" }"),
+      {"slope_wrong_unit",
+       with_contact(
+           "[contact]\nfriction = { law = \"velocity-dependent\", mu = 0.2, slope = \"1 m/s\" }"),
        "slope", "contact.friction.slope", "expected an inverse velocity (SI unit s/m"},
-      {"adhesion_missing_shear", with_contact("[contact]\nfriction = { law = \"adhesion\", mu = 0.2 }"), "adhesion",
+      {"adhesion_missing_shear",
+       with_contact("[contact]\nfriction = { law = \"adhesion\", mu = 0.2 }"), "adhesion",
        "contact.friction.shear_strength", "missing required key: expected a pressure"},
       {"theta_dam_below_ref",
-       with_contact("[contact]\nfriction = { law = \"thermal-softening\", mu = 0.2, theta_ref = \"500 C\", theta_dam = \"400 C\" }"),
+       with_contact("[contact]\nfriction = { law = \"thermal-softening\", mu = 0.2, theta_ref = "
+                    "\"500 C\", theta_dam = \"400 C\" }"),
        "theta_dam", "contact.friction.theta_dam", "a temperature above theta_ref = 773.15 K"},
       {"negative_half_velocity",
-       with_contact("[contact]\nfriction = { law = \"static-dynamic\", mu_static = 0.5, mu_dynamic = 0.3, half_velocity = -1 }"),
+       with_contact("[contact]\nfriction = { law = \"static-dynamic\", mu_static = 0.5, mu_dynamic "
+                    "= 0.3, half_velocity = -1 }"),
        "half_velocity", "contact.friction.half_velocity", "v½ >= 0"},
       {"wall_friction_table_bad",
-       replace(kScene, "friction = 0.2", "friction = { law = \"adhesion\", mu = 0.2, shear_strength = \"-1 MPa\" }"),
+       replace(kScene, "friction = 0.2",
+               "friction = { law = \"adhesion\", mu = 0.2, shear_strength = \"-1 MPa\" }"),
        "friction = {", "walls[0].friction.shear_strength", "S_a >= 0"},
-      {"load_unknown_body", with_load("body = \"blok\"\nside = \"+x\"\ntraction = [1, 0]"), "blok", "loads[0].body",
-       "the name of a body in [[bodies]]"},
-      {"load_bad_side", with_load("body = \"block\"\nside = \"top\"\ntraction = [1, 0]"), "top", "loads[0].side",
-       "one of \"+x\", \"-x\", \"+y\", \"-y\""},
-      {"load_without_side_or_region", with_load("body = \"block\" # here\ntraction = [1, 0]"), "[[loads]]", "loads[0].side",
-       "missing required key: expected side"},
+      {"load_unknown_body", with_load("body = \"blok\"\nside = \"+x\"\ntraction = [1, 0]"), "blok",
+       "loads[0].body", "the name of a body in [[bodies]]"},
+      {"load_bad_side", with_load("body = \"block\"\nside = \"top\"\ntraction = [1, 0]"), "top",
+       "loads[0].side", "one of \"+x\", \"-x\", \"+y\", \"-y\""},
+      {"load_without_side_or_region", with_load("body = \"block\" # here\ntraction = [1, 0]"),
+       "[[loads]]", "loads[0].side", "missing required key: expected side"},
       {"load_empty_region",
-       with_load("body = \"block\"\nregion = { min = [\"10 mm\", \"10 mm\"], max = [\"12 mm\", \"12 mm\"] }\ntraction = [1, 0]"),
+       with_load("body = \"block\"\nregion = { min = [\"10 mm\", \"10 mm\"], max = [\"12 mm\", "
+                 "\"12 mm\"] }\ntraction = [1, 0]"),
        "region", "loads[0].region", "selects at least one particle of 'block', got none"},
       {"load_region_inverted",
-       with_load("body = \"block\"\nregion = { min = [\"10 mm\", \"10 mm\"], max = [\"2 mm\", \"12 mm\"] }\ntraction = [1, 0]"),
+       with_load("body = \"block\"\nregion = { min = [\"10 mm\", \"10 mm\"], max = [\"2 mm\", \"12 "
+                 "mm\"] }\ntraction = [1, 0]"),
        "region", "loads[0].region.max", "expected max >= min"},
-      {"load_missing_traction", with_load("body = \"block\"\nside = \"+x\""), "[[loads]]", "loads[0].traction",
-       "missing required key"},
-      {"load_traction_wrong_unit", with_load("body = \"block\"\nside = \"+x\"\ntraction = [\"1 N\", 0]"), "traction",
+      {"load_missing_traction", with_load("body = \"block\"\nside = \"+x\""), "[[loads]]",
+       "loads[0].traction", "missing required key"},
+      {"load_traction_wrong_unit",
+       with_load("body = \"block\"\nside = \"+x\"\ntraction = [\"1 N\", 0]"), "traction",
        "loads[0].traction[0]", "expected a pressure"},
       {"load_times_decreasing",
-       with_load("body = \"block\"\nside = \"+x\"\ntraction = { times = [0, \"2 us\",\n \"1 us\"], values = [[0, 0], [1, 0], [0, 0]] }"),
+       with_load("body = \"block\"\nside = \"+x\"\ntraction = { times = [0, \"2 us\",\n \"1 us\"], "
+                 "values = [[0, 0], [1, 0], [0, 0]] }"),
        "\"1 us\"]", "loads[0].traction.times[2]", "increasing order, got 1e-06 s after 2e-06 s"},
       {"load_values_count",
-       with_load("body = \"block\"\nside = \"+x\"\ntraction = { times = [0, \"2 us\"], values = [[0, 0]] }"), "values",
-       "loads[0].traction.values", "one traction [tx, ty] per time (2), got 1"},
-      {"load_traction_scalar", with_load("body = \"block\"\nside = \"+x\"\ntraction = 5"), "traction = 5",
-       "loads[0].traction", "a constant traction [tx, ty]"},
+       with_load("body = \"block\"\nside = \"+x\"\ntraction = { times = [0, \"2 us\"], values = "
+                 "[[0, 0]] }"),
+       "values", "loads[0].traction.values", "one traction [tx, ty] per time (2), got 1"},
+      {"load_traction_scalar", with_load("body = \"block\"\nside = \"+x\"\ntraction = 5"),
+       "traction = 5", "loads[0].traction", "a constant traction [tx, ty]"},
   };
 }
 
 }  // namespace
 
 INSTANTIATE_TEST_SUITE_P(SceneFracture, BadFractureSceneTest, testing::ValuesIn(bad_scenes()),
-                         [](const testing::TestParamInfo<BadFractureScene>& info) { return std::string(info.param.name); });
+                         [](const testing::TestParamInfo<BadFractureScene>& info) {
+                           return std::string(info.param.name);
+                         });

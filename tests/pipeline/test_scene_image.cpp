@@ -8,9 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <string>
-
 #include <opencv2/imgcodecs.hpp>
+#include <string>
 
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/segment.hpp"
@@ -60,7 +59,8 @@ end_time = "1 us"
 fs::path fixture_dir() {
   const fs::path dir = fs::path(::testing::TempDir()) / "fragmpm_scene_image";
   fs::create_directories(dir);
-  if (!fs::exists(dir / "disks.png")) cv::imwrite((dir / "disks.png").string(), fp::synthetic_disks().image);
+  if (!fs::exists(dir / "disks.png"))
+    cv::imwrite((dir / "disks.png").string(), fp::synthetic_disks().image);
   return dir;
 }
 
@@ -79,7 +79,8 @@ std::string replace(std::string text, const std::string& from, const std::string
 
 int line_of(const std::string& text, const std::string& marker) {
   const auto at = text.find(marker);
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+  return 1 + static_cast<int>(
+                 std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
 void expect_error(const std::string& text, const std::string& marker, const std::string& key,
@@ -92,7 +93,9 @@ void expect_error(const std::string& text, const std::string& marker, const std:
     const std::string what = e.what();
     EXPECT_EQ(e.line, line_of(text, marker)) << what;
     EXPECT_EQ(e.key, key) << what;
-    EXPECT_NE(what.find(path + ":" + std::to_string(e.line) + ": key '" + key + "'"), std::string::npos) << what;
+    EXPECT_NE(what.find(path + ":" + std::to_string(e.line) + ": key '" + key + "'"),
+              std::string::npos)
+        << what;
     EXPECT_NE(what.find(explanation), std::string::npos) << what;
   }
 }
@@ -149,13 +152,15 @@ TEST(SceneImage, EveryGrainOfAnImageIsABody) {
 TEST(SceneImage, TouchingGrainsAreFlaggedOnBothSides) {
   const fs::path dir = fixture_dir();
   cv::imwrite((dir / "pairs.png").string(), fp::synthetic_touching_pairs().image);
-  const mpm::Problem<2> p = fp::load_scene(write_scene("pairs.toml", replace(kScene, "disks.png", "pairs.png")));
+  const mpm::Problem<2> p =
+      fp::load_scene(write_scene("pairs.toml", replace(kScene, "disks.png", "pairs.png")));
   ASSERT_EQ(p.body_names.size(), 13u);
   // Lattice neighbours (spacing 1 µm) in different grains: both must carry the surface flag.
   std::map<std::pair<long, long>, std::size_t> at;
   for (std::size_t q = 0; q < p.particles.size(); ++q)
     if (p.particles.body[q] > 0)
-      at[{std::lround(p.particles.x[q].x() * 1e6 - 0.5), std::lround(p.particles.x[q].y() * 1e6 - 0.5)}] = q;
+      at[{std::lround(p.particles.x[q].x() * 1e6 - 0.5),
+          std::lround(p.particles.x[q].y() * 1e6 - 0.5)}] = q;
   std::size_t contacts = 0;
   for (const auto& [ij, q] : at)
     for (const auto& d : {std::pair<long, long>{1, 0}, {0, 1}}) {
@@ -175,31 +180,36 @@ TEST(SceneImage, GrainFileGivesTheSameBodies) {
   o.pixel_size = 1e-6;
   const fp::Segmentation s = fp::segment(o);
   const fp::ParticleSampling sampling{4e-6, 2};
-  const mpm::Particles<2> particles =
-      fp::particles_from_labels(s.table.labels, 1e-6, sampling, fp::material_of_labels(s.table), {2300.0});
+  const mpm::Particles<2> particles = fp::particles_from_labels(
+      s.table.labels, 1e-6, sampling, fp::material_of_labels(s.table), {2300.0});
   fp::write_grain_file((dir / "disks.h5").string(), s, particles, {sampling, {2300.0}, ""}, true);
-  std::string text = replace(kScene, "image = \"disks.png\"\npixel_size = \"1 um\"", "grains = \"disks.h5\"");
-  const mpm::Problem<2> p = fp::load_scene(write_scene("grains.toml", replace(text, "\"rock\"", "\"sand\"")));
+  std::string text =
+      replace(kScene, "image = \"disks.png\"\npixel_size = \"1 um\"", "grains = \"disks.h5\"");
+  const mpm::Problem<2> p =
+      fp::load_scene(write_scene("grains.toml", replace(text, "\"rock\"", "\"sand\"")));
   // The scene's cell size (particle spacing 1 µm) decides the resolution, not the file's 2 µm.
   expect_disk_grains(p, "sand");
 }
 
 TEST(SceneImage, MissingImageNamesLineAndKey) {
-  expect_error(replace(kScene, "disks.png", "nothere.png"), "image = ", "bodies[1].image", "nothere.png");
+  expect_error(replace(kScene, "disks.png", "nothere.png"), "image = ", "bodies[1].image",
+               "nothere.png");
 }
 
 TEST(SceneImage, BadPixelSizeNamesLineAndKey) {
-  expect_error(replace(kScene, "\"1 um\"", "\"-1 um\""), "pixel_size", "bodies[1].pixel_size", "a positive length");
-  expect_error(replace(kScene, "\"1 um\"", "\"1 s\""), "pixel_size", "bodies[1].pixel_size", "expected a length");
-  expect_error(replace(kScene, "pixel_size = \"1 um\"\n", ""), "[[bodies]]\nname = \"rock\"", "bodies[1].pixel_size",
-               "missing required key");
+  expect_error(replace(kScene, "\"1 um\"", "\"-1 um\""), "pixel_size", "bodies[1].pixel_size",
+               "a positive length");
+  expect_error(replace(kScene, "\"1 um\"", "\"1 s\""), "pixel_size", "bodies[1].pixel_size",
+               "expected a length");
+  expect_error(replace(kScene, "pixel_size = \"1 um\"\n", ""), "[[bodies]]\nname = \"rock\"",
+               "bodies[1].pixel_size", "missing required key");
 }
 
 TEST(SceneImage, GrainsOutsideTheDomainAndUnknownKeys) {
   expect_error(replace(kScene, "[\"100 um\", \"200 um\"]", "[\"400 um\", \"200 um\"]"), "origin",
                "bodies[1].origin", "above grid.max in x");
-  expect_error(replace(kScene, "origin =", "thresold = \"otsu\"\norigin ="), "thresold", "bodies[1].thresold",
-               "unknown key");
-  expect_error(replace(kScene, "origin =", "crop = [600, 0, 100, 100]\norigin ="), "crop", "bodies[1].crop",
-               "crop");
+  expect_error(replace(kScene, "origin =", "thresold = \"otsu\"\norigin ="), "thresold",
+               "bodies[1].thresold", "unknown key");
+  expect_error(replace(kScene, "origin =", "crop = [600, 0, 100, 100]\norigin ="), "crop",
+               "bodies[1].crop", "crop");
 }

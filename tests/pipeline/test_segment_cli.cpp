@@ -6,10 +6,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <string>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "fragmpm/pipeline/segment_file.hpp"
 #include "fragmpm/pipeline/segment_synthetic.hpp"
@@ -35,7 +34,8 @@ fs::path dir() {
 
 Outcome run(const std::string& arguments) {
   const fs::path log = dir() / "log.txt";
-  const std::string command = std::string(FRAGMPM_BINARY) + " segment " + arguments + " > " + log.string() + " 2>&1";
+  const std::string command =
+      std::string(FRAGMPM_BINARY) + " segment " + arguments + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   Outcome o;
   o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -56,13 +56,15 @@ void expect_bad_input(const std::string& arguments, const std::string& expected_
   const Outcome o = run(arguments);
   EXPECT_EQ(o.code, 2) << arguments << "\n" << o.output;
   EXPECT_NE(o.output.find(expected_text), std::string::npos)
-      << arguments << "\nexpected '" << expected_text << "' in:\n" << o.output;
+      << arguments << "\nexpected '" << expected_text << "' in:\n"
+      << o.output;
 }
 
 }  // namespace
 
 TEST(SegmentCli, SegmentsAnImageAndWritesGrainFileAndPreview) {
-  const std::string out = (dir() / "disks.h5").string(), preview = (dir() / "disks_preview.png").string();
+  const std::string out = (dir() / "disks.h5").string(),
+                    preview = (dir() / "disks_preview.png").string();
   const Outcome o = run(disks_png() + " --pixel-size 2um -o " + out + " --preview " + preview +
                         " --cell-size 8um --overwrite");
   ASSERT_EQ(o.code, 0) << o.output;
@@ -80,7 +82,8 @@ TEST(SegmentCli, SegmentsAnImageAndWritesGrainFileAndPreview) {
 
 TEST(SegmentCli, MissingUnreadableAndCorruptFiles) {
   const std::string out = " -o " + (dir() / "bad.h5").string() + " --overwrite";
-  expect_bad_input((dir() / "no_such_image.png").string() + " --pixel-size 1um" + out, "no such file");
+  expect_bad_input((dir() / "no_such_image.png").string() + " --pixel-size 1um" + out,
+                   "no such file");
   const fs::path empty = dir() / "empty.png";
   std::ofstream(empty).close();
   expect_bad_input(empty.string() + " --pixel-size 1um" + out, "empty");
@@ -117,19 +120,25 @@ TEST(SegmentCli, DegenerateImages) {
 
 TEST(SegmentCli, BadOptions) {
   const std::string out = " -o " + (dir() / "bad.h5").string() + " --overwrite";
-  expect_bad_input(disks_png() + " --pixel-size 0um" + out, "--pixel-size must be a positive length");
-  expect_bad_input(disks_png() + " --pixel-size -1um" + out, "--pixel-size must be a positive length");
+  expect_bad_input(disks_png() + " --pixel-size 0um" + out,
+                   "--pixel-size must be a positive length");
+  expect_bad_input(disks_png() + " --pixel-size -1um" + out,
+                   "--pixel-size must be a positive length");
   expect_bad_input(disks_png() + " --pixel-size 3kg" + out, "--pixel-size '3kg'");
   expect_bad_input(disks_png() + out, "pixel-size");  // required
-  expect_bad_input(disks_png() + " --pixel-size 1um --crop 600,400,100,100" + out, "not inside the image");
-  expect_bad_input(disks_png() + " --pixel-size 1um --crop -5,0,100,100" + out, "not inside the image");
+  expect_bad_input(disks_png() + " --pixel-size 1um --crop 600,400,100,100" + out,
+                   "not inside the image");
+  expect_bad_input(disks_png() + " --pixel-size 1um --crop -5,0,100,100" + out,
+                   "not inside the image");
   expect_bad_input(disks_png() + " --pixel-size 1um --crop 10,10,100" + out, "four integers");
   expect_bad_input(disks_png() + " --pixel-size 1um --crop 10,10,0,5" + out, "at least 2 × 2");
   expect_bad_input(disks_png() + " --pixel-size 1um --threshold fixed" + out, "needs --level");
   expect_bad_input(disks_png() + " --pixel-size 1um --threshold adaptive --block 40" + out, "odd");
   expect_bad_input(disks_png() + " --pixel-size 1um --neck-ratio 1.5" + out, "--neck-ratio");
   expect_bad_input(disks_png() + " --pixel-size 1um --phase-bands 200,100" + out, "ascending");
-  expect_bad_input(disks_png() + " --pixel-size 1um --phase-bands 100 --density 2650,2700,2800" + out, "--density");
+  expect_bad_input(
+      disks_png() + " --pixel-size 1um --phase-bands 100 --density 2650,2700,2800" + out,
+      "--density");
   expect_bad_input(disks_png() + " --pixel-size 1um --cell-size 0um" + out, "--cell-size");
   expect_bad_input(disks_png() + " --pixel-size 1um --min-area 100000" + out, "no grains left");
   expect_bad_input(disks_png() + " --pixel-size 1um --input pebbles" + out, "pebbles");

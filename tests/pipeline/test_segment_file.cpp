@@ -1,10 +1,9 @@
-// Grain files (docs/design.md): write, read back, refuse to overwrite, reject foreign files; grains as
-// scene bodies from an image or a grain file.
+// Grain files (docs/design.md): write, read back, refuse to overwrite, reject foreign files; grains
+// as scene bodies from an image or a grain file.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -69,7 +68,8 @@ TEST(SegmentFile, RoundTrip) {
   // An existing file is kept unless overwriting is asked for.
   EXPECT_THROW(fp::write_grain_file(path.string(), s, particles, {sampling, {2500.0}, ""}, false),
                fragmpm::mpm::RunFileError);
-  EXPECT_NO_THROW(fp::write_grain_file(path.string(), s, particles, {sampling, {2500.0}, ""}, true));
+  EXPECT_NO_THROW(
+      fp::write_grain_file(path.string(), s, particles, {sampling, {2500.0}, ""}, true));
 }
 
 TEST(SegmentFile, ForeignFilesAreRejected) {

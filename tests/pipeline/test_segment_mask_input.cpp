@@ -2,9 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <string>
-
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "fragmpm/pipeline/segment.hpp"
 #include "fragmpm/pipeline/segment_mask_input.hpp"
@@ -25,8 +24,10 @@ cv::Mat class_mask(const cv::Mat& truth) {
       const int l = truth.at<int>(r, c);
       if (l == 0) continue;
       bool edge = false;
-      for (const auto& [dr, dc] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
-        const int rr = std::clamp(r + dr, 0, truth.rows - 1), cc = std::clamp(c + dc, 0, truth.cols - 1);
+      for (const auto& [dr, dc] :
+           {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
+        const int rr = std::clamp(r + dr, 0, truth.rows - 1),
+                  cc = std::clamp(c + dc, 0, truth.cols - 1);
         edge = edge || truth.at<int>(rr, cc) != l;
       }
       classes.at<unsigned char>(r, c) = edge ? 2 : 1;
@@ -49,16 +50,19 @@ TEST(SegmentMaskInput, ClassMaskBoundariesGoBackToTheirGrains) {
   const fp::Segmentation s = fp::segment(class_mask(d.truth), o);
   ASSERT_EQ(s.table.grains.size(), 12u);
   for (std::size_t k = 0; k < d.grains.size(); ++k) {
-    const int label = s.table.labels.at<int>(static_cast<int>(d.grains[k].cy), static_cast<int>(d.grains[k].cx));
+    const int label =
+        s.table.labels.at<int>(static_cast<int>(d.grains[k].cy), static_cast<int>(d.grains[k].cx));
     ASSERT_GT(label, 0);
-    EXPECT_EQ(s.table.grains[static_cast<std::size_t>(label - 1)].pixels, truth_pixels(d, k)) << "grain " << k;
+    EXPECT_EQ(s.table.grains[static_cast<std::size_t>(label - 1)].pixels, truth_pixels(d, k))
+        << "grain " << k;
   }
   // Boundary as background: only the interiors remain, every grain smaller by its outline.
   o.classes.boundary_to_grains = false;
   const fp::Segmentation inner = fp::segment(class_mask(d.truth), o);
   ASSERT_EQ(inner.table.grains.size(), 12u);
   for (const fp::Grain& g : inner.table.grains) {
-    const int truth_label = d.truth.at<int>(static_cast<int>(g.centroid_row), static_cast<int>(g.centroid_col));
+    const int truth_label =
+        d.truth.at<int>(static_cast<int>(g.centroid_row), static_cast<int>(g.centroid_col));
     EXPECT_LT(g.pixels, truth_pixels(d, static_cast<std::size_t>(truth_label - 1)));
   }
 }
@@ -69,7 +73,8 @@ TEST(SegmentMaskInput, SeveralGrainClassesAndPhases) {
   cv::Mat classes = class_mask(d.truth);
   for (int r = 0; r < classes.rows; ++r)
     for (int c = 0; c < classes.cols; ++c)
-      if (classes.at<unsigned char>(r, c) == 1 && d.truth.at<int>(r, c) % 2 == 0) classes.at<unsigned char>(r, c) = 3;
+      if (classes.at<unsigned char>(r, c) == 1 && d.truth.at<int>(r, c) % 2 == 0)
+        classes.at<unsigned char>(r, c) = 3;
   fp::SegmentOptions o = micrometre_options("two minerals");
   o.input = fp::InputKind::classes;
   o.classes.grain_classes = {1, 3};
@@ -78,7 +83,8 @@ TEST(SegmentMaskInput, SeveralGrainClassesAndPhases) {
   const fp::Segmentation s = fp::segment(classes, o);
   ASSERT_EQ(s.table.grains.size(), 12u);
   for (const fp::Grain& g : s.table.grains) {
-    const int t = d.truth.at<int>(static_cast<int>(g.centroid_row), static_cast<int>(g.centroid_col));
+    const int t =
+        d.truth.at<int>(static_cast<int>(g.centroid_row), static_cast<int>(g.centroid_col));
     EXPECT_EQ(g.phase, t % 2 == 0 ? 1 : 0) << "truth grain " << t;
   }
 }
@@ -92,7 +98,8 @@ TEST(SegmentMaskInput, LabelImageKeepsGrainsAndSplitsRepeatedLabels) {
   const fp::Segmentation s = fp::segment(labels16, o);
   ASSERT_EQ(s.table.grains.size(), 12u);
   for (std::size_t k = 0; k < d.grains.size(); ++k) {
-    const int label = s.table.labels.at<int>(static_cast<int>(d.grains[k].cy), static_cast<int>(d.grains[k].cx));
+    const int label =
+        s.table.labels.at<int>(static_cast<int>(d.grains[k].cy), static_cast<int>(d.grains[k].cx));
     ASSERT_GT(label, 0);
     EXPECT_EQ(s.table.grains[static_cast<std::size_t>(label - 1)].pixels, truth_pixels(d, k));
   }
@@ -105,14 +112,16 @@ TEST(SegmentMaskInput, LabelImageKeepsGrainsAndSplitsRepeatedLabels) {
 }
 
 TEST(SegmentMaskInput, SandstoneWindowFromImages) {
-  fp::SegmentOptions o = micrometre_options(std::string(FRAGMPM_SOURCE_DIR) + "/images/miocene_sandstone_window.png");
+  fp::SegmentOptions o =
+      micrometre_options(std::string(FRAGMPM_SOURCE_DIR) + "/images/miocene_sandstone_window.png");
   o.input = fp::InputKind::classes;
   const fp::Segmentation s = fp::segment(o);
   EXPECT_EQ(s.input.grey.cols, 800);
   EXPECT_EQ(s.input.grey.rows, 600);
   EXPECT_EQ(s.table.grains.size(), 51u);
   // Boundary lines given to the grains: grains touch, and background (pores) remains.
-  const double grain_fraction = static_cast<double>(cv::countNonZero(s.table.labels)) / (800.0 * 600.0);
+  const double grain_fraction =
+      static_cast<double>(cv::countNonZero(s.table.labels)) / (800.0 * 600.0);
   EXPECT_GT(grain_fraction, 0.5);
   EXPECT_LT(grain_fraction, 0.95);
 }

@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <map>
-
 #include <opencv2/core.hpp>
 
 #include "fragmpm/pipeline/segment.hpp"
@@ -16,9 +15,9 @@ namespace fp = fragmpm::pipeline;
 
 TEST(SegmentParticles, TouchingRectanglesHaveExactCountsAndSurfaceRings) {
   // Pixel 1 µm, h = 4 µm, 2 per cell: spacing a = 2 px, lattice points at odd pixel coordinates.
-  // Grain 1: columns [10, 50) × rows [20, 50); grain 2 touches it on the right: [50, 90) × [20, 50).
-  // Each is sampled by 20 × 15 lattice points; its outer ring 2·20 + 2·15 − 4 = 66 is flagged, on
-  // both sides of the contact.
+  // Grain 1: columns [10, 50) × rows [20, 50); grain 2 touches it on the right: [50, 90) × [20,
+  // 50). Each is sampled by 20 × 15 lattice points; its outer ring 2·20 + 2·15 − 4 = 66 is flagged,
+  // on both sides of the contact.
   cv::Mat labels = cv::Mat::zeros(70, 100, CV_32S);
   labels(cv::Rect(10, 20, 40, 30)).setTo(1);
   labels(cv::Rect(50, 20, 40, 30)).setTo(2);
@@ -54,10 +53,12 @@ TEST(SegmentParticles, ParticlesPerGrainMatchTheGrainArea) {
   fp::SegmentOptions o = fp::testing::micrometre_options("irregular");
   const fp::Segmentation s = fp::segment(d.image, o);
   // Particle spacings 2, 1 and 1.5 pixels on grains of 1500 – 6500 px².
-  for (const fp::ParticleSampling sampling : {fp::ParticleSampling{4e-6, 2}, fp::ParticleSampling{3e-6, 3},
-                                              fp::ParticleSampling{6e-6, 4}}) {
+  for (const fp::ParticleSampling sampling :
+       {fp::ParticleSampling{4e-6, 2}, fp::ParticleSampling{3e-6, 3},
+        fp::ParticleSampling{6e-6, 4}}) {
     const int n = sampling.particles_per_cell;
-    const auto p = fp::particles_from_labels(s.table.labels, s.pixel_size, sampling, fp::material_of_labels(s.table), {2650.0});
+    const auto p = fp::particles_from_labels(s.table.labels, s.pixel_size, sampling,
+                                             fp::material_of_labels(s.table), {2650.0});
     const double a = sampling.cell_size / n;
     std::vector<int> count(s.table.grains.size(), 0);
     for (const auto b : p.body) ++count[static_cast<std::size_t>(b)];
@@ -76,10 +77,12 @@ TEST(SegmentParticles, SurfaceFlagsMarkExactlyTheBoundaryOfDisks) {
   const fp::SyntheticImage d = fp::synthetic_touching_pairs();
   const fp::Segmentation s = fp::segment(d.image, fp::testing::micrometre_options("pairs"));
   const double a = 3e-6;  // h = 6 µm, 2 per cell
-  const auto p = fp::particles_from_labels(s.table.labels, 1e-6, {6e-6, 2}, fp::material_of_labels(s.table), {2650.0});
+  const auto p = fp::particles_from_labels(s.table.labels, 1e-6, {6e-6, 2},
+                                           fp::material_of_labels(s.table), {2650.0});
   const cv::Mat& L = s.table.labels;
   auto label_at = [&](double x, double y) {  // physical → pixel
-    const int col = static_cast<int>(std::floor(x / 1e-6)), row = L.rows - 1 - static_cast<int>(std::floor(y / 1e-6));
+    const int col = static_cast<int>(std::floor(x / 1e-6)),
+              row = L.rows - 1 - static_cast<int>(std::floor(y / 1e-6));
     if (col < 0 || row < 0 || col >= L.cols || row >= L.rows) return 0;
     return L.at<int>(row, col);
   };
@@ -105,11 +108,16 @@ TEST(SegmentParticles, SurfaceFlagsMarkExactlyTheBoundaryOfDisks) {
 TEST(SegmentParticles, AutoCellSizeAndRefusals) {
   const fp::SyntheticImage d = fp::synthetic_disks();
   const fp::Segmentation s = fp::segment(d.image, fp::testing::micrometre_options("disks"));
-  // Median equivalent diameter of radii 10 … 42 (twelve disks) is that of r = 28 → 56 µm / 8 = 7 µm.
+  // Median equivalent diameter of radii 10 … 42 (twelve disks) is that of r = 28 → 56 µm / 8 = 7
+  // µm.
   EXPECT_DOUBLE_EQ(fp::auto_cell_size(s.table, 1e-6), 7e-6);
   const auto m = fp::material_of_labels(s.table);
-  EXPECT_THROW(fp::particles_from_labels(s.table.labels, 1e-6, {0.0, 2}, m, {2650.0}), fp::SegmentInputError);
-  EXPECT_THROW(fp::particles_from_labels(s.table.labels, 1e-6, {1e-5, 0}, m, {2650.0}), fp::SegmentInputError);
-  EXPECT_THROW(fp::particles_from_labels(s.table.labels, 1e-6, {1e-5, 2}, m, {}), fp::SegmentInputError);
-  EXPECT_THROW(fp::particles_from_labels(s.table.labels, 1e-6, {1e-5, 2}, {0}, {2650.0}), fp::SegmentInputError);
+  EXPECT_THROW(fp::particles_from_labels(s.table.labels, 1e-6, {0.0, 2}, m, {2650.0}),
+               fp::SegmentInputError);
+  EXPECT_THROW(fp::particles_from_labels(s.table.labels, 1e-6, {1e-5, 0}, m, {2650.0}),
+               fp::SegmentInputError);
+  EXPECT_THROW(fp::particles_from_labels(s.table.labels, 1e-6, {1e-5, 2}, m, {}),
+               fp::SegmentInputError);
+  EXPECT_THROW(fp::particles_from_labels(s.table.labels, 1e-6, {1e-5, 2}, {0}, {2650.0}),
+               fp::SegmentInputError);
 }

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <numbers>
-
 #include <opencv2/core.hpp>
 
 #include "fragmpm/pipeline/segment.hpp"
@@ -22,7 +21,8 @@ TEST(SegmentSynthetic, DisksCountExactAndAreasWithinTwoPercent) {
   // Otsu's level separates the two grey levels (grain pixels are those above it).
   EXPECT_GE(s.threshold_level, fp::kSyntheticBackground);
   EXPECT_LT(s.threshold_level, fp::kSyntheticGrain);
-  for (const fp::Grain& g : s.table.grains) EXPECT_GT(g.shape.roundness, 0.95) << "grain " << g.label;
+  for (const fp::Grain& g : s.table.grains)
+    EXPECT_GT(g.shape.roundness, 0.95) << "grain " << g.label;
 }
 
 TEST(SegmentSynthetic, IrregularGrainsCountExactAndAreasWithinTwoPercent) {
@@ -80,10 +80,12 @@ TEST(SegmentSynthetic, NoiseIsToleratedWithDenoising) {
   for (std::size_t k = 0; k < pairs.grains.size(); k += 2) {
     double found = 0.0;
     for (std::size_t m = k; m < k + 2; ++m) {
-      const int label = s.table.labels.at<int>(static_cast<int>(pairs.grains[m].cy), static_cast<int>(pairs.grains[m].cx));
+      const int label = s.table.labels.at<int>(static_cast<int>(pairs.grains[m].cy),
+                                               static_cast<int>(pairs.grains[m].cx));
       found += s.table.grains[static_cast<std::size_t>(label - 1)].shape.area / 1e-12;
     }
-    EXPECT_NEAR(found / (pairs.grains[k].area + pairs.grains[k + 1].area), 1.0, 0.02) << "pair " << k / 2;
+    EXPECT_NEAR(found / (pairs.grains[k].area + pairs.grains[k + 1].area), 1.0, 0.02)
+        << "pair " << k / 2;
   }
 }
 
@@ -181,5 +183,6 @@ TEST(SegmentSynthetic, CropSelectsAWindow) {
   ASSERT_EQ(s.table.grains.size(), 1u);
   EXPECT_EQ(s.input.window, cv::Rect(40, 40, 90, 80));
   EXPECT_NEAR(s.table.grains[0].centroid_col, 40.0, 0.05);
-  EXPECT_NEAR(s.table.grains[0].shape.area / 1e-12, std::numbers::pi * 100.0, 0.02 * std::numbers::pi * 100.0);
+  EXPECT_NEAR(s.table.grains[0].shape.area / 1e-12, std::numbers::pi * 100.0,
+              0.02 * std::numbers::pi * 100.0);
 }

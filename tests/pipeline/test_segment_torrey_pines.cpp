@@ -52,10 +52,11 @@ TEST(SegmentTorreyPines, CountAndMedianSizeWithinTenPercentOfTheMask) {
   const double n_truth = static_cast<double>(truth.table.grains.size());
   const double n_found = static_cast<double>(found.table.grains.size());
   const double d_truth = median_diameter_px(truth), d_found = median_diameter_px(found);
-  std::printf("Torrey Pines: %zu grains (mask %zu, %+.1f %%), median equivalent diameter %.2f px "
-              "(mask %.2f px, %+.1f %%)\n",
-              found.table.grains.size(), truth.table.grains.size(), 100.0 * (n_found / n_truth - 1.0),
-              d_found, d_truth, 100.0 * (d_found / d_truth - 1.0));
+  std::printf(
+      "Torrey Pines: %zu grains (mask %zu, %+.1f %%), median equivalent diameter %.2f px "
+      "(mask %.2f px, %+.1f %%)\n",
+      found.table.grains.size(), truth.table.grains.size(), 100.0 * (n_found / n_truth - 1.0),
+      d_found, d_truth, 100.0 * (d_found / d_truth - 1.0));
   EXPECT_NEAR(n_found / n_truth, 1.0, 0.10);
   EXPECT_NEAR(d_found / d_truth, 1.0, 0.10);
 }

@@ -1,6 +1,6 @@
-// V2 (docs/verification.md; [NBS18] §3, appendix eq. (46)-(54)): the rigid-block oracle against direct numerical
-// integration of the block's equation of motion, the loading of the paper recomputed, and the
-// coarsest MPM level for Coulomb friction within 2 % of the oracle.
+// V2 (docs/verification.md; [NBS18] §3, appendix eq. (46)-(54)): the rigid-block oracle against
+// direct numerical integration of the block's equation of motion, the loading of the paper
+// recomputed, and the coarsest MPM level for Coulomb friction within 2 % of the oracle.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,8 +13,8 @@ using namespace fragmpm::pipeline;
 
 namespace {
 
-// [NBS18] §3: ρ = 1 g/cm³, h = 15 mm, l = 40 mm, μ = 0.2, R = 1, v_max = 2 % of √(E/ρ), E = 2500 MPa,
-// 85 mm of sliding, t1 = t2 = t_f/4.
+// [NBS18] §3: ρ = 1 g/cm³, h = 15 mm, l = 40 mm, μ = 0.2, R = 1, v_max = 2 % of √(E/ρ), E = 2500
+// MPa, 85 mm of sliding, t1 = t2 = t_f/4.
 const double v_max = 0.02 * std::sqrt(2.5e9 / 1000.0);
 SlidingBlockLoading paper_loading() {
   return sliding_block_loading(1000.0, 0.015, 0.040, 0.2, 1.0, v_max, 0.085, 0.25);
@@ -35,7 +35,8 @@ TEST(SlidingBlockOracle, LoadingOfThePaper) {
   const RigidBlockState s = integrate_rigid_block(b, mpm::CoulombFriction{0.2}, b.end_time, 20000);
   EXPECT_NEAR(s.distance, 0.085, 1e-9);
   // Onset at S = μN (eq. (47)): t_i = t2 + 0.2 t_s.
-  EXPECT_NEAR(rigid_block_onset(b, *coulomb), b.tangential_start + 0.2 * (b.end_time - b.tangential_start), 1e-15);
+  EXPECT_NEAR(rigid_block_onset(b, *coulomb),
+              b.tangential_start + 0.2 * (b.end_time - b.tangential_start), 1e-15);
 }
 
 TEST(SlidingBlockOracle, ClosedFormsMatchNumericalIntegration) {
@@ -51,7 +52,8 @@ TEST(SlidingBlockOracle, ClosedFormsMatchNumericalIntegration) {
       const double t = fraction * b.end_time;
       const RigidBlockState s = integrate_rigid_block(b, law, t, 20000);
       EXPECT_NEAR(s.onset, rigid_block_onset(b, *closed), 1e-15);
-      const double v = rigid_block_velocity(b, *closed, t), q = rigid_block_friction_work(b, *closed, t);
+      const double v = rigid_block_velocity(b, *closed, t),
+                   q = rigid_block_friction_work(b, *closed, t);
       EXPECT_GT(v, 0.0);
       EXPECT_NEAR(s.velocity, v, 1e-9 * v) << law.index() << " at " << fraction << " t_f";
       EXPECT_NEAR(s.friction_work, q, 1e-8 * q) << law.index() << " at " << fraction << " t_f";
@@ -66,12 +68,16 @@ TEST(SlidingBlockOracle, SmoothLawSpansStaticAndDynamic) {
   // [NBS18] Fig. 4: large v½ slides like μ = μ_s, small v½ like the sharp static/dynamic law.
   const SlidingBlockLoading b = paper_loading();
   const double t = b.end_time;
-  const double slow = integrate_rigid_block(b, mpm::SmoothStaticDynamicFriction{0.4, 0.2, 1e6}, t, 20000).velocity;
-  const double coulomb_static = rigid_block_velocity(b, *rigid_block_friction(mpm::CoulombFriction{0.4}), t);
+  const double slow =
+      integrate_rigid_block(b, mpm::SmoothStaticDynamicFriction{0.4, 0.2, 1e6}, t, 20000).velocity;
+  const double coulomb_static =
+      rigid_block_velocity(b, *rigid_block_friction(mpm::CoulombFriction{0.4}), t);
   EXPECT_NEAR(slow, coulomb_static, 2e-3 * coulomb_static);
-  const double sharp =
-      rigid_block_velocity(b, *rigid_block_friction(mpm::SmoothStaticDynamicFriction{0.4, 0.2, 0.0}), t);
-  const double smooth = integrate_rigid_block(b, mpm::SmoothStaticDynamicFriction{0.4, 0.2, 1e-4}, t, 200000).velocity;
+  const double sharp = rigid_block_velocity(
+      b, *rigid_block_friction(mpm::SmoothStaticDynamicFriction{0.4, 0.2, 0.0}), t);
+  const double smooth =
+      integrate_rigid_block(b, mpm::SmoothStaticDynamicFriction{0.4, 0.2, 1e-4}, t, 200000)
+          .velocity;
   EXPECT_NEAR(smooth, sharp, 2e-3 * sharp);
 }
 
@@ -87,8 +93,8 @@ TEST(VerifySlidingBlock, CoarsestCoulombLevelWithinTwoPercent) {
 
 TEST(VerifySlidingBlock, CoarsestAdhesionLevelWithinTwoPercent) {
   // The adhesion force S_a A scales with the contact area summed over the interface nodes. From the
-  // fields' volume gradients that sum is the block length; [NBS18] eq. (11) over-estimates it at the
-  // block's end nodes (0.61 h instead of h/2), which made this case 4.9 % slow at 5 mm.
+  // fields' volume gradients that sum is the block length; [NBS18] eq. (11) over-estimates it at
+  // the block's end nodes (0.61 h instead of h/2), which made this case 4.9 % slow at 5 mm.
   const auto rows = verify_sliding_block_level("adhesion", 0, 5e-3);
   ASSERT_EQ(rows.size(), 2u);
   for (const VerifyRow& r : rows) {

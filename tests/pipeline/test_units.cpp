@@ -49,9 +49,13 @@ TEST(Units, ExamplesFromTheDesign) {
 
 TEST(Units, EquivalentSpellings) {
   // One density written five ways: 2300 kg/m3.
-  for (const char* s : {"2300 kg/m3", "2300 kg/m^3", "2.3 g/cm^3", "2.3 g cm^-3", "2.3 g/cm\xC2\xB3"})
+  for (const char* s :
+       {"2300 kg/m3", "2300 kg/m^3", "2.3 g/cm^3", "2.3 g cm^-3", "2.3 g/cm\xC2\xB3"})
     EXPECT_NEAR(fp::parse_quantity(s, K::density), 2300.0, 1e-9) << s;
-  EXPECT_NEAR(fp::parse_quantity("2.3 g\xC2\xB7" "cm\xE2\x81\xBB\xC2\xB3", K::density), 2300.0, 1e-9);
+  EXPECT_NEAR(fp::parse_quantity("2.3 g\xC2\xB7"
+                                 "cm\xE2\x81\xBB\xC2\xB3",
+                                 K::density),
+              2300.0, 1e-9);
   EXPECT_NEAR(fp::parse_quantity("5 \xC2\xB5s", K::time), 5e-6, 1e-20);
   EXPECT_NEAR(fp::parse_quantity("5 \xCE\xBCs", K::time), 5e-6, 1e-20);
   EXPECT_NEAR(fp::parse_quantity("5us", K::time), 5e-6, 1e-20);
@@ -63,7 +67,10 @@ TEST(Units, EquivalentSpellings) {
   EXPECT_NEAR(fp::parse_quantity("1 m/s/s", K::acceleration), 1.0, 1e-15);
   EXPECT_NEAR(fp::parse_quantity("100 J/m2", K::energy_per_area), 100.0, 1e-12);
   EXPECT_NEAR(fp::parse_quantity("8e-6 1/K", K::expansion), 8e-6, 1e-20);
-  EXPECT_NEAR(fp::parse_quantity("25 \xC2\xB0" "C", K::temperature), 298.15, 1e-12);
+  EXPECT_NEAR(fp::parse_quantity("25 \xC2\xB0"
+                                 "C",
+                                 K::temperature),
+              298.15, 1e-12);
   EXPECT_NEAR(fp::parse_quantity("-273.15 degC", K::temperature), 0.0, 1e-12);
 }
 
@@ -86,8 +93,8 @@ TEST(Units, WrongKindNamesWhatWasExpectedAndFound) {
 }
 
 TEST(Units, UnreadableQuantities) {
-  for (const char* s : {"", "GPa", "abc", "5 furlongs", "5 m/", "5 J/kg K", "5 (m", "5 m^", "5 mC", "nan", "inf m",
-                        "5 m)", "5 m^x"})
+  for (const char* s : {"", "GPa", "abc", "5 furlongs", "5 m/", "5 J/kg K", "5 (m", "5 m^", "5 mC",
+                        "nan", "inf m", "5 m)", "5 m^x"})
     EXPECT_FALSE(error_of(s, K::length).empty()) << s;
   EXPECT_NE(error_of("5 J/kg K", K::specific_heat).find("parentheses"), std::string::npos);
   EXPECT_NE(error_of("5 furlongs", K::length).find("unknown unit 'furlongs'"), std::string::npos);

@@ -1,5 +1,5 @@
-// V1 (docs/verification.md): the bar's centre-of-mass velocity error against the closed form must fall
-// with h at first order or better, for CPDI and linear shape functions.
+// V1 (docs/verification.md): the bar's centre-of-mass velocity error against the closed form must
+// fall with h at first order or better, for CPDI and linear shape functions.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,7 +43,8 @@ TEST(VerifyBar, ObservedOrderOfAnExactPowerLaw) {
 }
 
 TEST(VerifyReport, TargetsDecidePassOrFail) {
-  const std::string dir = (std::filesystem::temp_directory_path() / "fragmpm_test_verify_report").string();
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / "fragmpm_test_verify_report").string();
   VerifyRow row{.case_name = std::string("case"),
                 .variant = std::string("v"),
                 .cell_size = 1e-3,

@@ -1,7 +1,9 @@
 // The .xmf beside a run file as ParaView's Xdmf3 reader sees it, loaded with the XDMF 3 library
-// (Debian's libxdmf-dev): every frame a Polyvertex point set at its time, damage the first attribute,
-// vectors of 3 and tensors of 9 components on the points, 2D data padded with z = 0 (F_zz = 1).
+// (Debian's libxdmf-dev): every frame a Polyvertex point set at its time, damage the first
+// attribute, vectors of 3 and tensors of 9 components on the points, 2D data padded with z = 0
+// (F_zz = 1).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <XdmfAttribute.hpp>
 #include <XdmfAttributeCenter.hpp>
@@ -14,13 +16,10 @@
 #include <XdmfTopology.hpp>
 #include <XdmfTopologyType.hpp>
 #include <XdmfUnstructuredGrid.hpp>
-
 #include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "fragmpm/mpm/run_file.hpp"
 
@@ -40,7 +39,8 @@ std::string temp_path(const std::string& name) {
     }
   };
   static Cleanup cleanup;
-  const std::string path = ::testing::TempDir() + "fragmpm_xdmf_" + std::to_string(getpid()) + "_" + name + ".h5";
+  const std::string path =
+      ::testing::TempDir() + "fragmpm_xdmf_" + std::to_string(getpid()) + "_" + name + ".h5";
   std::filesystem::remove(path);
   std::filesystem::remove(std::filesystem::path(path).replace_extension(".xmf"));
   cleanup.paths.push_back(path);
@@ -82,9 +82,11 @@ struct Written {
 /// Loads the .xmf of `path` with the XDMF 3 library and checks every frame against `frames` and
 /// the particles of `last` (the last frame written).
 template <int D>
-void check_xmf(const std::string& path, const std::vector<Written>& frames, const Particles<D>& last) {
+void check_xmf(const std::string& path, const std::vector<Written>& frames,
+               const Particles<D>& last) {
   const std::string xmf = std::filesystem::path(path).replace_extension(".xmf").string();
-  const shared_ptr<XdmfDomain> domain = shared_dynamic_cast<XdmfDomain>(XdmfReader::New()->read(xmf));
+  const shared_ptr<XdmfDomain> domain =
+      shared_dynamic_cast<XdmfDomain>(XdmfReader::New()->read(xmf));
   ASSERT_TRUE(domain);
   ASSERT_EQ(domain->getNumberGridCollections(), 1u);
   const shared_ptr<XdmfGridCollection> collection = domain->getGridCollection(0);
@@ -124,13 +126,15 @@ void check_xmf(const std::string& path, const std::vector<Written>& frames, cons
       // The values of the last frame, component by component.
       for (std::size_t p = 0; p < n; ++p) {
         if (name == "v") {
-          for (int i = 0; i < 3; ++i) EXPECT_EQ(attribute->getValue<double>(3 * p + i), i < D ? last.v[p](i) : 0.0);
+          for (int i = 0; i < 3; ++i)
+            EXPECT_EQ(attribute->getValue<double>(3 * p + i), i < D ? last.v[p](i) : 0.0);
         } else if (name == "F" || name == "stress") {
           const Mat<D>& m = name == "F" ? last.F[p] : last.stress[p];
           for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) {
               const double pad = i == 2 && j == 2 && name == "F" ? 1.0 : 0.0;
-              EXPECT_EQ(attribute->getValue<double>(9 * p + 3 * i + j), i < D && j < D ? m(i, j) : pad);
+              EXPECT_EQ(attribute->getValue<double>(9 * p + 3 * i + j),
+                        i < D && j < D ? m(i, j) : pad);
             }
         } else if (name == "damage") {
           EXPECT_EQ(attribute->getValue<double>(p), last.damage[p]);
@@ -156,7 +160,8 @@ TEST(Xdmf3Library, LoadsEveryFrameOfA2DRun) {
   {
     auto run = RunFile<2>::create(path, meta(), false);
     for (int k = 0; k < 4; ++k) {
-      last = random_particles<2>(k == 3 ? 5 : 8, true, 10 + k);  // a smaller last frame: hyperslab ids
+      last =
+          random_particles<2>(k == 3 ? 5 : 8, true, 10 + k);  // a smaller last frame: hyperslab ids
       run.write_frame(10 * k, 2.5e-6 * k, last, {});
       frames.push_back({2.5e-6 * k, last.size()});
     }

@@ -50,18 +50,21 @@ std::optional<NumericalFailure> update_active_region(StepState<D>& state) {
     failure.step = state.step;
     failure.time = state.time;
     failure.particle = outside;
-    failure.what = "particle " + std::to_string(outside) + " (body " + std::to_string(P.body[outside]) +
-                   ") left the computational domain: x = " + format_vector<D>(P.x[outside]) +
-                   " m, domain " + format_vector<D>(domain_min) + " to " + format_vector<D>(domain_max) +
-                   " m, v = " + format_vector<D>(P.v[outside]) + " m/s";
+    failure.what =
+        "particle " + std::to_string(outside) + " (body " + std::to_string(P.body[outside]) +
+        ") left the computational domain: x = " + format_vector<D>(P.x[outside]) + " m, domain " +
+        format_vector<D>(domain_min) + " to " + format_vector<D>(domain_max) +
+        " m, v = " + format_vector<D>(P.v[outside]) + " m/s";
     return failure;
   }
   GridIndex<D>& grid = state.grid;
   for (int k = 0; k < D; ++k) {
-    const auto first =
-        static_cast<std::int64_t>(std::floor((lower[k] - grid.origin[k]) * grid.inverse_cell_size)) - 1;
-    const auto last =
-        static_cast<std::int64_t>(std::floor((upper[k] - grid.origin[k]) * grid.inverse_cell_size)) + 2;
+    const auto first = static_cast<std::int64_t>(
+                           std::floor((lower[k] - grid.origin[k]) * grid.inverse_cell_size)) -
+                       1;
+    const auto last = static_cast<std::int64_t>(
+                          std::floor((upper[k] - grid.origin[k]) * grid.inverse_cell_size)) +
+                      2;
     grid.lower[k] = first;
     grid.extent[k] = last - first + 1;
   }
@@ -86,7 +89,8 @@ void size_grid(StepState<D>& state) {
   ContactSums<D>& sums = state.contact;
   const StepPlan& plan = state.plan;
   reset_array(part.node_gradient, nodes, Vec<D>::Zero().eval());
-  if (!plan.by_bodies && plan.principal_rule) reset_array(part.node_gradient_tensor, nodes, Mat<D>::Zero().eval());
+  if (!plan.by_bodies && plan.principal_rule)
+    reset_array(part.node_gradient_tensor, nodes, Mat<D>::Zero().eval());
   reset_array(sums.dhat_max, nodes, 0.0);
   if (!plan.by_bodies) {
     reset_array(part.node_damage_max, nodes, 0.0);
@@ -125,16 +129,17 @@ void bin_particles_into_strips(StepState<D>& state) {
   const std::int64_t width = order.strip_width;
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = 0; p < n; ++p) {
-    const std::int64_t cell =
-        static_cast<std::int64_t>(std::floor((P.x[p][0] - grid.origin[0]) * grid.inverse_cell_size)) -
-        grid.lower[0];
+    const std::int64_t cell = static_cast<std::int64_t>(std::floor((P.x[p][0] - grid.origin[0]) *
+                                                                   grid.inverse_cell_size)) -
+                              grid.lower[0];
     order.strip_of[p] = std::clamp<std::int64_t>(cell / width, 0, strips - 1);
   }
   for (std::int64_t p = 0; p < n; ++p) ++order.strip_start[order.strip_of[p] + 1];
   for (std::int64_t s = 0; s < strips; ++s) order.strip_start[s + 1] += order.strip_start[s];
   size_array(order.strip_cursor, static_cast<std::size_t>(strips));
   std::copy(order.strip_start.begin(), order.strip_start.end() - 1, order.strip_cursor.begin());
-  for (std::int64_t p = 0; p < n; ++p) order.strip_order[order.strip_cursor[order.strip_of[p]]++] = p;
+  for (std::int64_t p = 0; p < n; ++p)
+    order.strip_order[order.strip_cursor[order.strip_of[p]]++] = p;
 }
 
 template <int D>
@@ -143,14 +148,15 @@ void update_load_forces(StepState<D>& state) {
   for (const TractionLoad<D>& load : state.problem.loads) {
     const Vec<D> traction = load.traction(state.time);
     for (std::size_t k = 0; k < load.particles.size(); ++k)
-      state.load_force[static_cast<std::size_t>(load.particles[k])] += load.boundary_measure[k] * traction;
+      state.load_force[static_cast<std::size_t>(load.particles[k])] +=
+          load.boundary_measure[k] * traction;
   }
 }
 
-#define FRAGMPM_INSTANTIATE(D)                                                   \
+#define FRAGMPM_INSTANTIATE(D)                                                     \
   template std::optional<NumericalFailure> update_active_region<D>(StepState<D>&); \
-  template void size_grid<D>(StepState<D>&);                                     \
-  template void bin_particles_into_strips<D>(StepState<D>&);                     \
+  template void size_grid<D>(StepState<D>&);                                       \
+  template void bin_particles_into_strips<D>(StepState<D>&);                       \
   template void update_load_forces<D>(StepState<D>&);
 FRAGMPM_INSTANTIATE(2)
 FRAGMPM_INSTANTIATE(3)

@@ -40,14 +40,16 @@ inline ConstitutiveResult update_constitutive(StepState<D>& state, std::int64_t 
     const double band_width = spec.characteristic_length > 0.0
                                   ? spec.characteristic_length
                                   : (D == 2 ? std::sqrt(P.volume0[p]) : std::cbrt(P.volume0[p]));
-    update_damage<D>(spec.damage, trial, P.strength[p], band_width, dt, P.damage_history[p], P.damage[p]);
+    update_damage<D>(spec.damage, trial, P.strength[p], band_width, dt, P.damage_history[p],
+                     P.damage[p]);
   }
   const double d = P.damage[p];
   if (d <= 0.0) {
     P.stress[p] = trial;
     return {psi, 0.0};
   }
-  const DegradedState<D> degraded = degrade_with_energy<D>(model, P.F[p], trial, d, spec.degradation, psi);
+  const DegradedState<D> degraded =
+      degrade_with_energy<D>(model, P.F[p], trial, d, spec.degradation, psi);
   // ½ Σ τᵢ ln λᵢ is the exact released energy only at small strain; at large stretch it can exceed
   // ψ itself, so it is bounded by ψ: damage never stores negative energy.
   const double degradable = std::clamp(degraded.degradable, 0.0, psi);

@@ -27,7 +27,8 @@ void exchange_contact_momentum(StepState<D>& state, double dt) {
   }
   const ContactSpec<D>& contact = state.problem.contact;
   const bool prescribed_normal = contact.normal.squaredNorm() > 0.0;
-  const Vec<D> fixed_normal = prescribed_normal ? Vec<D>(contact.normal.normalized()) : Vec<D>::Zero();
+  const Vec<D> fixed_normal =
+      prescribed_normal ? Vec<D>(contact.normal.normalized()) : Vec<D>::Zero();
   const bool area_needed = state.plan.needs_contact_area;
   const double cell_size = state.grid.cell_size;
   long long in_contact = 0;
@@ -42,9 +43,11 @@ void exchange_contact_momentum(StepState<D>& state, double dt) {
     }
     const bool separable = node_separable(state, i);
     // Normal from field 0 towards field 1: mass gradients point out of their field
-    // ([XLS21] eq. (74)), so n₀ = (g₀ − g₁)/|g₀ − g₁| and n₁ = −n₀ exactly (momentum-conserving pair).
+    // ([XLS21] eq. (74)), so n₀ = (g₀ − g₁)/|g₀ − g₁| and n₁ = −n₀ exactly (momentum-conserving
+    // pair).
     Vec<D> normal = sums.mass_gradient[0][i] - sums.mass_gradient[1][i];
-    if (prescribed_normal) normal = normal.dot(fixed_normal) >= 0.0 ? fixed_normal : Vec<D>(-fixed_normal);
+    if (prescribed_normal)
+      normal = normal.dot(fixed_normal) >= 0.0 ? fixed_normal : Vec<D>(-fixed_normal);
     const double normal_length = normal.norm();
     if (!separable || !(normal_length > 0.0)) {
       const double m = m0 + m1;
@@ -65,9 +68,10 @@ void exchange_contact_momentum(StepState<D>& state, double dt) {
     // Tributary interface area from the fields' volume gradients (divergence theorem; exact also
     // where an interface ends inside the node's support, where [NBS18] eq. (11) over-estimates: at
     // the edge of the sliding block it gives 0.61 h instead of h/2, 5 % too much adhesion at 5 mm).
-    pair.area = area_needed ? contact_area_from_gradients<D>(sums.volume_gradient[0][i], sums.volume_gradient[1][i],
-                                                             pair.normal)
-                            : 0.0;
+    pair.area = area_needed
+                    ? contact_area_from_gradients<D>(sums.volume_gradient[0][i],
+                                                     sums.volume_gradient[1][i], pair.normal)
+                    : 0.0;
     if (contact.position_gap_test) {
       // [NBS18] eq. (8) with the normal pointing from a to b: the surfaces overlap when the field
       // centres are closer along n than 0.8 h (the printed (x_a − x_b)·n has the opposite sign to
@@ -78,7 +82,8 @@ void exchange_contact_momentum(StepState<D>& state, double dt) {
     if (thermal) pair.temperature = thermal->interface_temperature(i);  // [XLS21] eq. (15), Alg. 3
     pair.force_a = N.force[0][i];
     pair.force_b = N.force[1][i];
-    const ContactExchange<D> exchange = exchange_momentum<D>(pair, contact.friction, dt, contact.friction_work_order);
+    const ContactExchange<D> exchange =
+        exchange_momentum<D>(pair, contact.friction, dt, contact.friction_work_order);
     if (!exchange.in_contact) continue;
     ++in_contact;
     if (thermal) {

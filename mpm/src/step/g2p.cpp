@@ -37,8 +37,9 @@ NumericalFailure inverted_particle(const StepState<D>& state, std::int64_t p, do
   failure.step = state.step + 1;
   failure.time = state.time + dt;
   failure.particle = p;
-  failure.what = "particle " + std::to_string(p) + " (body " + std::to_string(P.body[p]) + ", material '" +
-                 state.problem.materials[P.material[p]].name + "', damage " + std::to_string(P.damage[p]) +
+  failure.what = "particle " + std::to_string(p) + " (body " + std::to_string(P.body[p]) +
+                 ", material '" + state.problem.materials[P.material[p]].name + "', damage " +
+                 std::to_string(P.damage[p]) +
                  ") became inverted or non-finite: J = " + std::to_string(P.F[p].determinant()) +
                  ", F = " + format_matrix<D>(P.F[p]) + ", x = " + format_vector<D>(P.x[p]) +
                  " m, v = " + format_vector<D>(P.v[p]) + " m/s, dt = " + std::to_string(dt) + " s";
@@ -57,7 +58,8 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   const Vec<D> gravity = state.problem.gravity;
   const bool loaded = !state.load_force.empty();
   const double cell_size = state.grid.cell_size;
-  double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0, max_speed = 0.0;
+  double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0,
+         max_speed = 0.0;
   std::int64_t failed = -1;
   const int slots = omp_get_max_threads();
   size_array(state.momentum_parts, static_cast<std::size_t>(D) * static_cast<std::size_t>(slots));
@@ -87,7 +89,8 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
       // per step (a spinning disk builds up stress). The midpoint increment [HW80]
       // (I − ΔtL/2)⁻¹(I + ΔtL/2) agrees to O(Δt²) and is exactly orthogonal for a spin.
       const Mat<D> half_step = 0.5 * dt * velocity_gradient;
-      const Mat<D> increment = (Mat<D>::Identity() - half_step).inverse() * (Mat<D>::Identity() + half_step);
+      const Mat<D> increment =
+          (Mat<D>::Identity() - half_step).inverse() * (Mat<D>::Identity() + half_step);
       P.F[p] = increment * P.F[p];
       if constexpr (deform_domain) P.domain[p] = increment * P.domain[p];
       const double J = P.F[p].determinant();
@@ -105,7 +108,8 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
       if (loaded) load_work += state.load_force[p].dot(displacement);
       momentum += P.mass[p] * P.v[p];
       const double density = P.mass[p] / (P.volume0[p] * J);
-      max_speed = std::max(max_speed, state.models[P.material[p]].wave_speed(density) + P.v[p].norm());
+      max_speed =
+          std::max(max_speed, state.models[P.material[p]].wave_speed(density) + P.v[p].norm());
     }
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
     for (int k = 0; k < D; ++k) state.momentum_parts[t * D + k] = momentum[k];
@@ -121,19 +125,20 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   state.totals.gravity_work += gravity_work;
   state.totals.load_work += load_work;
   state.totals.dissipated += dissipated;
-  state.next_dt_limit = max_speed > 0.0 ? state.problem.time.cfl * cell_size / (std::sqrt(double(D)) * max_speed)
-                                        : std::numeric_limits<double>::infinity();
+  state.next_dt_limit =
+      max_speed > 0.0 ? state.problem.time.cfl * cell_size / (std::sqrt(double(D)) * max_speed)
+                      : std::numeric_limits<double>::infinity();
   return std::nullopt;
 }
 
-#define FRAGMPM_INSTANTIATE_KIND(D, K)                                                                  \
-  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, false, false>(    \
-      StepState<D>&, double);                                                                           \
-  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, false, true>(     \
-      StepState<D>&, double);                                                                           \
-  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, true, false>(     \
-      StepState<D>&, double);                                                                           \
-  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, true, true>(      \
+#define FRAGMPM_INSTANTIATE_KIND(D, K)                                                             \
+  template std::optional<NumericalFailure>                                                         \
+  grid_to_particles<D, ShapeFunctionKind::K, false, false>(StepState<D>&, double);                 \
+  template std::optional<NumericalFailure>                                                         \
+  grid_to_particles<D, ShapeFunctionKind::K, false, true>(StepState<D>&, double);                  \
+  template std::optional<NumericalFailure>                                                         \
+  grid_to_particles<D, ShapeFunctionKind::K, true, false>(StepState<D>&, double);                  \
+  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, true, true>( \
       StepState<D>&, double);
 #define FRAGMPM_INSTANTIATE(D)        \
   FRAGMPM_INSTANTIATE_KIND(D, linear) \

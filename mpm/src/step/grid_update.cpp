@@ -1,5 +1,5 @@
-// The grid update of the explicit step: v_i = p_i / m_i, then v_i + Δt f_i / m_i, the explicit form of
-// m_i a_i = f_i ([XLS21] eq. (46)).
+// The grid update of the explicit step: v_i = p_i / m_i, then v_i + Δt f_i / m_i, the explicit form
+// of m_i a_i = f_i ([XLS21] eq. (46)).
 #include "step/stages.hpp"
 
 namespace fragmpm::mpm {

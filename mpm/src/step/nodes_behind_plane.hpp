@@ -24,16 +24,20 @@ void for_each_node_behind_plane(const GridIndex<D>& grid, const Vec<D>& point, c
     double slack = offset;
     for (int k = 0; k < D; ++k) {
       if (k == axis) continue;
-      const double lo = grid.origin[k] + grid.cell_size * static_cast<double>(grid.lower[k]) - point[k];
+      const double lo =
+          grid.origin[k] + grid.cell_size * static_cast<double>(grid.lower[k]) - point[k];
       const double hi = lo + grid.cell_size * static_cast<double>(grid.extent[k] - 1);
       slack -= std::min(lo * normal[k], hi * normal[k]);
     }
     const double limit = point[axis] + slack / normal[axis];  // x_a ≤ limit (n_a > 0) or ≥ limit
-    const double index = (limit - grid.origin[axis]) * grid.inverse_cell_size - static_cast<double>(grid.lower[axis]);
+    const double index = (limit - grid.origin[axis]) * grid.inverse_cell_size -
+                         static_cast<double>(grid.lower[axis]);
     // One node of margin each way against rounding; the exact test below decides.
     std::int64_t lo = 0, hi = grid.extent[axis] - 1;
-    if (normal[axis] > 0.0) hi = std::min(hi, static_cast<std::int64_t>(std::floor(index)) + 1);
-    else lo = std::max(lo, static_cast<std::int64_t>(std::ceil(index)) - 1);
+    if (normal[axis] > 0.0)
+      hi = std::min(hi, static_cast<std::int64_t>(std::floor(index)) + 1);
+    else
+      lo = std::max(lo, static_cast<std::int64_t>(std::ceil(index)) - 1);
     if (hi < lo) return;
     first[axis] = lo;
     extent[axis] = hi - lo + 1;

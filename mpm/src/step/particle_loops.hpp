@@ -9,11 +9,14 @@
 namespace fragmpm::mpm {
 
 template <int D, ShapeFunctionKind Kind>
-inline void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<D>& grid, Stencil<D>& s) {
-  if constexpr (Kind == ShapeFunctionKind::linear) linear_stencil<D>(P.x[p], grid, s);
+inline void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<D>& grid,
+                         Stencil<D>& s) {
+  if constexpr (Kind == ShapeFunctionKind::linear)
+    linear_stencil<D>(P.x[p], grid, s);
   else if constexpr (Kind == ShapeFunctionKind::ugimp)
     ugimp_stencil<D>(P.x[p], 0.5 * P.domain[p].diagonal().cwiseAbs(), grid, s);
-  else cpdi_compact_stencil<D>(P.x[p], P.domain[p], grid, s);
+  else
+    cpdi_compact_stencil<D>(P.x[p], P.domain[p], grid, s);
 }
 
 /// Runs body(p, stencil) over the particles p with keep(p), strip by strip in two parity passes, so
@@ -42,7 +45,8 @@ void scatter_particles_where(const StepState<D>& state, Keep&& keep, Body&& body
 
 template <int D, ShapeFunctionKind Kind, class Body>
 void scatter_particles(const StepState<D>& state, Body&& body) {
-  scatter_particles_where<D, Kind>(state, [](std::int64_t) { return true; }, body);
+  scatter_particles_where<D, Kind>(
+      state, [](std::int64_t) { return true; }, body);
 }
 
 /// Field of entry e of particle p's stencil this step (0 unless the step is partitioned).
@@ -51,7 +55,8 @@ inline int field_at(const StepState<D>& state, std::int64_t p, int e) {
   if constexpr (Partitioned)
     return state.partition.field_map[static_cast<std::size_t>(p) * Stencil<D>::capacity +
                                      static_cast<std::size_t>(e)];
-  else return 0;
+  else
+    return 0;
 }
 
 }  // namespace fragmpm::mpm

@@ -28,8 +28,8 @@ namespace {
 /// are also almost in the crack plane, but there the sign test is what [HH17] §2.2-2.3 validate
 /// (applying the rule there stopped the notched-bar crack at 6 of 8 mm).
 template <int D>
-bool junction_of_surfaces(const StepState<D>& state, std::int64_t p, std::size_t node, const Vec<D>& g,
-                          const Vec<D>& nodal) {
+bool junction_of_surfaces(const StepState<D>& state, std::int64_t p, std::size_t node,
+                          const Vec<D>& g, const Vec<D>& nodal) {
   const auto& P = state.problem.particles;
   const PartitionState<D>& part = state.partition;
   return P.surface[p] != 0 && P.damage[p] < state.problem.contact.critical_damage &&
@@ -56,7 +56,8 @@ int field_of(const StepState<D>& state, std::int64_t p, std::size_t node) {
     return (P.x[p] - 0.5 * (c0 + c1)).dot(c1 - c0) <= 0.0 ? 0 : 1;
   }
   if (nodal.squaredNorm() == 0.0) return 0;  // a node away from any damage: one field
-  const Vec<D> offset = P.x[p] - state.grid.position(state.grid.global(static_cast<std::int64_t>(node)));
+  const Vec<D> offset =
+      P.x[p] - state.grid.position(state.grid.global(static_cast<std::int64_t>(node)));
   return particle_field_at_node<D>(g, nodal, offset);
 }
 
@@ -118,7 +119,8 @@ void nodal_damage_gradient(StepState<D>& state) {
     if (g.squaredNorm() <= 0.0) return;
     for (int e = 0; e < s.count; ++e)
       if (s.weight[e] > 0.0)
-        accumulate_gradient_tensor<D>(g, part.node_gradient_tensor[static_cast<std::size_t>(s.node[e])]);
+        accumulate_gradient_tensor<D>(
+            g, part.node_gradient_tensor[static_cast<std::size_t>(s.node[e])]);
   });
   const std::int64_t nodes = static_cast<std::int64_t>(part.node_gradient.size());
 #pragma omp parallel for schedule(static)
@@ -151,7 +153,9 @@ void build_field_map(StepState<D>& state) {
       fill_stencil<D, Kind>(P, p, state.grid, s);
       for (int e = 0; e < s.count; ++e) {
         const std::size_t i = static_cast<std::size_t>(s.node[e]);
-        fields[e] = part.node_gradient[i].squaredNorm() > 0.0 ? static_cast<std::uint8_t>(field_of(state, p, i)) : 0;
+        fields[e] = part.node_gradient[i].squaredNorm() > 0.0
+                        ? static_cast<std::uint8_t>(field_of(state, p, i))
+                        : 0;
       }
     }
   }
@@ -174,8 +178,8 @@ void update_damage_field(StepState<D>& state) {
   part.this_step = any;
   if (!any) return;
   part.neighbours.update(P.x, state.kernel_radius, state.problem.contact.rebuild_fraction);
-  damage_field_gradient<D>(part.neighbours, P.x, part.particle_dhat, state.kernel_radius, part.particle_field,
-                           part.particle_gradient);
+  damage_field_gradient<D>(part.neighbours, P.x, part.particle_dhat, state.kernel_radius,
+                           part.particle_field, part.particle_gradient);
 }
 
 template <int D, ShapeFunctionKind Kind>
@@ -187,10 +191,10 @@ void partition_nodes(StepState<D>& state) {
   build_field_map<D, Kind>(state);
 }
 
-#define FRAGMPM_INSTANTIATE(D)                                                               \
-  template void update_damage_field<D>(StepState<D>&);                                       \
-  template void partition_nodes<D, ShapeFunctionKind::linear>(StepState<D>&);                \
-  template void partition_nodes<D, ShapeFunctionKind::ugimp>(StepState<D>&);                 \
+#define FRAGMPM_INSTANTIATE(D)                                                \
+  template void update_damage_field<D>(StepState<D>&);                        \
+  template void partition_nodes<D, ShapeFunctionKind::linear>(StepState<D>&); \
+  template void partition_nodes<D, ShapeFunctionKind::ugimp>(StepState<D>&);  \
   template void partition_nodes<D, ShapeFunctionKind::cpdi>(StepState<D>&);
 FRAGMPM_INSTANTIATE(2)
 FRAGMPM_INSTANTIATE(3)

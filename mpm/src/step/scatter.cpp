@@ -1,6 +1,6 @@
-// P2G ([XLS21] eq. (47)-(49)): m_i = Σ S̄ m_p, p_i = Σ S̄ m_p v_p, f_i = Σ S̄ (m_p g + f_p) − Σ V_p σ_p ∇S̄,
-// into the particle's field at each node as the field map says ([HH17] Alg. 2), with the contact
-// sums at the nodes that can hold two fields.
+// P2G ([XLS21] eq. (47)-(49)): m_i = Σ S̄ m_p, p_i = Σ S̄ m_p v_p, f_i = Σ S̄ (m_p g + f_p) − Σ V_p
+// σ_p ∇S̄, into the particle's field at each node as the field map says ([HH17] Alg. 2), with the
+// contact sums at the nodes that can hold two fields.
 #include <algorithm>
 
 #include "step/particle_loops.hpp"
@@ -44,12 +44,12 @@ void scatter_to_grid(StepState<D>& state) {
   });
 }
 
-#define FRAGMPM_INSTANTIATE_KIND(D, K)                                    \
+#define FRAGMPM_INSTANTIATE_KIND(D, K)                                          \
   template void scatter_to_grid<D, ShapeFunctionKind::K, false>(StepState<D>&); \
   template void scatter_to_grid<D, ShapeFunctionKind::K, true>(StepState<D>&);
-#define FRAGMPM_INSTANTIATE(D)              \
-  FRAGMPM_INSTANTIATE_KIND(D, linear)       \
-  FRAGMPM_INSTANTIATE_KIND(D, ugimp)        \
+#define FRAGMPM_INSTANTIATE(D)        \
+  FRAGMPM_INSTANTIATE_KIND(D, linear) \
+  FRAGMPM_INSTANTIATE_KIND(D, ugimp)  \
   FRAGMPM_INSTANTIATE_KIND(D, cpdi)
 FRAGMPM_INSTANTIATE(2)
 FRAGMPM_INSTANTIATE(3)

@@ -26,7 +26,8 @@ void update_load_forces(StepState<D>& state);
 /// partition.this_step. (damage_field_stage.cpp)
 template <int D>
 void update_damage_field(StepState<D>& state);
-/// Nodal damage gradient, band sides and the field map of this step ([HH17] Alg. 1-2). (partition.cpp)
+/// Nodal damage gradient, band sides and the field map of this step ([HH17] Alg. 1-2).
+/// (partition.cpp)
 template <int D, ShapeFunctionKind Kind>
 void partition_nodes(StepState<D>& state);
 
@@ -46,7 +47,8 @@ void apply_walls(StepState<D>& state, double dt);
 /// Nodal capacities and temperatures θⁿ, before the grid update. (thermal_stage.cpp)
 template <int D, ShapeFunctionKind Kind, bool Partitioned>
 void thermal_begin(StepState<D>& state);
-/// Heat loads, nodal rates and particle temperatures θⁿ⁺¹, after contact and walls. (thermal_stage.cpp)
+/// Heat loads, nodal rates and particle temperatures θⁿ⁺¹, after contact and walls.
+/// (thermal_stage.cpp)
 template <int D, ShapeFunctionKind Kind, bool Partitioned>
 void thermal_finish(StepState<D>& state, double dt);
 

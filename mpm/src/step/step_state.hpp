@@ -55,7 +55,7 @@ struct PartitionState {
   std::vector<double> particle_dhat, particle_field;  ///< d̂_p = max(s_p, d_p), D̄(x_p)
   std::vector<Vec<D>> particle_gradient;              ///< ∇D̄(x_p) ([HH17] eq. (17)-(19))
   std::vector<Vec<D>> node_gradient;                  ///< nonlocal nodal ∇D̄_i ([HH17] Alg. 1)
-  std::vector<Mat<D>> node_gradient_tensor;           ///< Σ_p ∇D̄_p ⊗ ∇D̄_p (principal rule only)
+  std::vector<Mat<D>> node_gradient_tensor;  ///< Σ_p ∇D̄_p ⊗ ∇D̄_p (principal rule only)
   /// For the junction rule of field_of: the largest damage d mapping to the node, and per field the
   /// sums Σ S̄ d̂_p x_p and Σ S̄ d̂_p over the band particles whose gradient decides their field there.
   std::vector<double> node_damage_max;
@@ -70,11 +70,11 @@ struct PartitionState {
 /// contact stage books there.
 template <int D>
 struct ContactSums {
-  std::array<std::vector<Vec<D>>, 2> mass_gradient;    ///< Σ m_p ∇S̄_ip per field ([XLS21] eq. (74))
-  std::array<std::vector<double>, 2> dhat;             ///< Σ S̄ m_p d̂_p per field ([XLS21] eq. (70))
+  std::array<std::vector<Vec<D>>, 2> mass_gradient;  ///< Σ m_p ∇S̄_ip per field ([XLS21] eq. (74))
+  std::array<std::vector<double>, 2> dhat;  ///< Σ S̄ m_p d̂_p per field ([XLS21] eq. (70))
   std::array<std::vector<Vec<D>>, 2> volume_gradient;  ///< Σ V_p ∇S̄_ip per field (contact area)
-  std::array<std::vector<Vec<D>>, 2> position;         ///< Σ S̄ m_p x_p per field ([NBS18] eq. (8))
-  std::vector<double> dhat_max;                        ///< largest d̂ mapping to the node
+  std::array<std::vector<Vec<D>>, 2> position;  ///< Σ S̄ m_p x_p per field ([NBS18] eq. (8))
+  std::vector<double> dhat_max;                 ///< largest d̂ mapping to the node
   std::vector<std::int64_t> two_field_nodes;
   std::vector<double> friction_work, normal_impulse, area;  ///< per two-field node
   long long nodes_in_contact = 0;
@@ -108,7 +108,7 @@ struct StepState {
   PartitionState<D> partition;
   ContactSums<D> contact;
   WallScratch<D> wall_scratch;
-  std::vector<Vec<D>> load_force;  ///< f_p of this step [N per unit thickness in 2D]
+  std::vector<Vec<D>> load_force;      ///< f_p of this step [N per unit thickness in 2D]
   std::vector<double> momentum_parts;  ///< per-thread momentum sums of G2P, D per thread
   /// ψ_t per particle from the last constitutive update (thermal and damage only): the damage
   /// heat of the next thermal stage is booked from it.

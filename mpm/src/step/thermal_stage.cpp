@@ -5,13 +5,14 @@
 // end of the step uses. The P2G stresses were computed with θⁿ, so this is the staggered split of
 // [XLS21] §3.4: θⁿ⁺¹ from the mechanical state n, then the mechanical state n+1 with θⁿ⁺¹.
 //
-// Derivation of the discrete heat equation ([XLS21] eq. (54)-(62); eq. (63) is garbled in our copy):
-// [XLS21] eq. (43), ρ c θ̇ = −∇·q + ρ(D_int − H_in) − ρ H_e, times a test function w and integrated
-// by parts over the current configuration:
+// Derivation of the discrete heat equation ([XLS21] eq. (54)-(62); eq. (63) is garbled in our
+// copy): [XLS21] eq. (43), ρ c θ̇ = −∇·q + ρ(D_int − H_in) − ρ H_e, times a test function w and
+// integrated by parts over the current configuration:
 //   ∫ w ρ c θ̇ dΩ = ∫ ∇w · q dΩ − ∮ w q·n dΓ + ∫ w ρ (D_int − H_in − H_e) dΩ.
 // With θ = Σ_i S_i θ_i, w = S_i, a lumped capacity C_i = Σ_p m_p c_p S̄_ip (eq. (56)) and particle
 // quadrature:
-//   C_i θ̇_i = Σ_p V_p q_p · ∇S̄_ip + Q_i^ext + Q_i^cont + (sources),          (eq. (55), (57), (58), (61))
+//   C_i θ̇_i = Σ_p V_p q_p · ∇S̄_ip + Q_i^ext + Q_i^cont + (sources),          (eq. (55), (57), (58),
+//   (61))
 // where −∮ w q·n dΓ is the boundary heat input Q_i^ext (flux q̄ or convection h(θ_∞ − θ) into the
 // body). The particle flux is evaluated from the nodal temperature of this step instead of being
 // carried as a state variable:
@@ -21,9 +22,9 @@
 // m_p c_p this deposits exactly Σ_i C_i θ̇_i Δt, so the nodal heat loads are conserved.
 //
 // The local sources (elastic structural heating, eq. (39); damage heating, eq. (28), (40)) are
-// applied at the particle that produces them rather than through the grid (eq. (59)-(60)): the round
-// trip Σ_i S̄_ip S̄_iq / C_i only smears a particle's own heat over its neighbours, which makes an
-// adiabatic (κ = 0) compress–release cycle irreversible. Their energy is unchanged.
+// applied at the particle that produces them rather than through the grid (eq. (59)-(60)): the
+// round trip Σ_i S̄_ip S̄_iq / C_i only smears a particle's own heat over its neighbours, which makes
+// an adiabatic (κ = 0) compress–release cycle irreversible. Their energy is unchanged.
 #include <algorithm>
 #include <cmath>
 
@@ -53,10 +54,12 @@ ThermalState<D>::ThermalState(const Problem<D>& problem) {
   }
   double lightest = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < n; ++p)
-    lightest = std::min(lightest, P.mass[p] * specific_heat[static_cast<std::size_t>(P.material[p])]);
+    lightest =
+        std::min(lightest, P.mass[p] * specific_heat[static_cast<std::size_t>(P.material[p])]);
   negligible_capacity = std::isfinite(lightest) ? 1e-10 * lightest : 0.0;
   for (const ThermalWallCondition<D>& c : problem.thermal.walls)
-    if (c.kind == ThermalWallKind::flux || c.kind == ThermalWallKind::convection) boundary_measure = true;
+    if (c.kind == ThermalWallKind::flux || c.kind == ThermalWallKind::convection)
+      boundary_measure = true;
   if (!problem.thermal.edge_loads.empty()) edge_source.assign(n, 0.0);
   for (const WallSpec<D>& w : problem.walls)
     if (w.kind == WallKind::contact) wall_friction = true;
@@ -94,27 +97,30 @@ void apply_wall_loads(StepState<D>& state, int fields) {
     if (c.kind == ThermalWallKind::insulated) continue;
     const Vec<D> shift = c.velocity.displacement(state.time);
     const Vec<D> point = c.point + shift;
-    for_each_node_behind_plane<D>(state.grid, point, c.normal, 2.0 * h, [&](std::int64_t node, const Vec<D>& x) {
-      if (!c.region.contains(x, shift, tolerance)) return;
-      const std::size_t i = static_cast<std::size_t>(node);
-      const double distance = (x - point).dot(c.normal);
-      for (int f = 0; f < fields; ++f) {
-        if (!(T.capacity[f][i] > T.negligible_capacity)) continue;
-        if (c.kind == ThermalWallKind::temperature) {
-          if (distance <= tolerance) T.fixed_nodes.push_back({i, f, c.temperature});
-          continue;
-        }
-        const double measure = std::max(0.0, -T.domain_gradient[f][i].dot(c.normal));
-        const double q = c.kind == ThermalWallKind::flux ? c.flux : c.film_coefficient * (c.temperature - T.temperature[f][i]);
-        T.load[f][i] += measure * q;
-      }
-    });
+    for_each_node_behind_plane<D>(
+        state.grid, point, c.normal, 2.0 * h, [&](std::int64_t node, const Vec<D>& x) {
+          if (!c.region.contains(x, shift, tolerance)) return;
+          const std::size_t i = static_cast<std::size_t>(node);
+          const double distance = (x - point).dot(c.normal);
+          for (int f = 0; f < fields; ++f) {
+            if (!(T.capacity[f][i] > T.negligible_capacity)) continue;
+            if (c.kind == ThermalWallKind::temperature) {
+              if (distance <= tolerance) T.fixed_nodes.push_back({i, f, c.temperature});
+              continue;
+            }
+            const double measure = std::max(0.0, -T.domain_gradient[f][i].dot(c.normal));
+            const double q = c.kind == ThermalWallKind::flux
+                                 ? c.flux
+                                 : c.film_coefficient * (c.temperature - T.temperature[f][i]);
+            T.load[f][i] += measure * q;
+          }
+        });
   }
 }
 
 /// Conductance of a separable contact node in contact this step, h_c A_c [W/K per unit thickness]
-/// ([XLS21] eq. (12)-(13), (82)): h_c = h₀ |p/p₀|^ε with the contact pressure p = f_n / A_c from this
-/// step's normal contact impulse (f_n = impulse/Δt) and area A_c; for ε = 1 this is γ̄ |f_n| of
+/// ([XLS21] eq. (12)-(13), (82)): h_c = h₀ |p/p₀|^ε with the contact pressure p = f_n / A_c from
+/// this step's normal contact impulse (f_n = impulse/Δt) and area A_c; for ε = 1 this is γ̄ |f_n| of
 /// eq. (82) and needs no area. 0 when the node is not in contact or nothing conducts.
 template <int D>
 double contact_conductance(const StepState<D>& state, std::size_t k, double dt) {
@@ -125,13 +131,14 @@ double contact_conductance(const StepState<D>& state, std::size_t k, double dt) 
   if (spec.contact_exponent == 1.0) return spec.contact_conductance / spec.contact_pressure * force;
   const double area = state.contact.area[k];
   if (!(area > 0.0)) return 0.0;
-  return spec.contact_conductance * std::pow(force / (area * spec.contact_pressure), spec.contact_exponent) * area;
+  return spec.contact_conductance *
+         std::pow(force / (area * spec.contact_pressure), spec.contact_exponent) * area;
 }
 
 /// A contact whose conductance would equalise the two nodal temperatures within one step
 /// (h_c A_c Δt ≥ C₀C₁/(C₀+C₁)) is thermally perfect: its fields share one temperature and one rate,
-/// as non-separable fields do. Exchanging the capped flow explicitly instead would leave a numerical
-/// resistance Δt(1/C₀ + 1/C₁) at the node.
+/// as non-separable fields do. Exchanging the capped flow explicitly instead would leave a
+/// numerical resistance Δt(1/C₀ + 1/C₁) at the node.
 template <int D>
 void merge_perfect_contacts(StepState<D>& state, double dt) {
   ThermalState<D>& T = *state.thermal;
@@ -140,7 +147,8 @@ void merge_perfect_contacts(StepState<D>& state, double dt) {
   for (std::size_t k = 0; k < two_field.size(); ++k) {
     const std::size_t i = static_cast<std::size_t>(two_field[k]);
     const double c0 = T.capacity[0][i], c1 = T.capacity[1][i];
-    if (!(c0 > T.negligible_capacity && c1 > T.negligible_capacity) || !node_separable(state, i)) continue;
+    if (!(c0 > T.negligible_capacity && c1 > T.negligible_capacity) || !node_separable(state, i))
+      continue;
     if (contact_conductance(state, k, dt) * dt < c0 * c1 / (c0 + c1)) continue;
     T.merged[i] = 1;
     const double theta = (T.heat[0][i] + T.heat[1][i]) / (c0 + c1);
@@ -159,7 +167,8 @@ void add_contact_heat(StepState<D>& state, double dt) {
   for (std::size_t k = 0; k < two_field.size(); ++k) {
     const std::size_t i = static_cast<std::size_t>(two_field[k]);
     const double c0 = T.capacity[0][i], c1 = T.capacity[1][i];
-    if (!(c0 > T.negligible_capacity && c1 > T.negligible_capacity) || !node_separable(state, i)) continue;
+    if (!(c0 > T.negligible_capacity && c1 > T.negligible_capacity) || !node_separable(state, i))
+      continue;
     const double friction_heat = state.contact.friction_work[k] / dt;
     T.load[0][i] += 0.5 * friction_heat;
     T.load[1][i] += 0.5 * friction_heat;
@@ -210,7 +219,8 @@ void thermal_begin(StepState<D>& state) {
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
     for (int f = 0; f < fields; ++f)
-      if (T.capacity[f][i] > T.negligible_capacity) T.temperature[f][i] = T.heat[f][i] / T.capacity[f][i];
+      if (T.capacity[f][i] > T.negligible_capacity)
+        T.temperature[f][i] = T.heat[f][i] / T.capacity[f][i];
     if constexpr (Partitioned) {
       // Fields that move as one (not separable) are one body thermally too: one temperature.
       if (T.capacity[0][i] > T.negligible_capacity && T.capacity[1][i] > T.negligible_capacity &&
@@ -258,22 +268,24 @@ double update_particle_temperatures(StepState<D>& state, double dt) {
       const double d = P.damage[p];
       // Elastic structural heating over last_J → J at fixed damage (eq. (39), integrated exactly).
       if (T.expansion[m] != 0.0 && J != T.last_J[p])
-        theta *= adiabatic_temperature_ratio(T.bulk[m], T.expansion[m], density0, T.specific_heat[m],
-                                             coupling_fraction(d, T.degradation[m], J), T.last_J[p], J);
+        theta *=
+            adiabatic_temperature_ratio(T.bulk[m], T.expansion[m], density0, T.specific_heat[m],
+                                        coupling_fraction(d, T.degradation[m], J), T.last_J[p], J);
       // Damage dissipation and coupling heat of the damage increment (eq. (28), (40)), from the ψ_t
       // the last constitutive update found at this F and d.
       if (T.damages[m] && d > T.last_damage[p]) {
         // The coupling energy is released only where damage degrades it (coupling_fraction).
         const double released = coupling_fraction(1.0, T.degradation[m], J) < 1.0 ? 1.0 : 0.0;
-        theta += damage_heat_density(state.degradable[p], T.bulk[m], released * T.expansion[m], T.reference[m], J,
-                                     d - T.last_damage[p]) /
+        theta += damage_heat_density(state.degradable[p], T.bulk[m], released * T.expansion[m],
+                                     T.reference[m], J, d - T.last_damage[p]) /
                  (density0 * T.specific_heat[m]);
       }
       P.temperature[p] = theta;
       T.last_J[p] = J;
       T.last_damage[p] = d;
       if (T.conductivity[m] > 0.0)
-        limit = std::min(limit, courant * density0 / J * T.specific_heat[m] * h2 / (2.0 * D * T.conductivity[m]));
+        limit = std::min(limit, courant * density0 / J * T.specific_heat[m] * h2 /
+                                    (2.0 * D * T.conductivity[m]));
     }
   }
   return limit;
@@ -290,16 +302,19 @@ void thermal_finish(StepState<D>& state, double dt) {
   constexpr int fields = Partitioned ? 2 : 1;
   if constexpr (Partitioned) merge_perfect_contacts(state, dt);
 
-  // Conduction Q_i^int = Σ_p V_p q_p·∇S̄_ip with q_p = −κ_p ∇θ(x_p) ([XLS21] eq. (18), (58)), and heat
-  // input through body edges carried by particles, Q_i += S̄_ip a_p q̄ (eq. (57)).
+  // Conduction Q_i^int = Σ_p V_p q_p·∇S̄_ip with q_p = −κ_p ∇θ(x_p) ([XLS21] eq. (18), (58)), and
+  // heat input through body edges carried by particles, Q_i += S̄_ip a_p q̄ (eq. (57)).
   const bool edges = !T.edge_source.empty();
   if (edges) update_edge_sources(T, spec, P);
   scatter_particles<D, Kind>(state, [&](std::int64_t p, const Stencil<D>& s) {
     Vec<D> gradient = Vec<D>::Zero();
     for (int e = 0; e < s.count; ++e)
-      gradient += T.temperature[field_at<D, Partitioned>(state, p, e)][static_cast<std::size_t>(s.node[e])] * s.gradient[e];
+      gradient += T.temperature[field_at<D, Partitioned>(state, p, e)]
+                               [static_cast<std::size_t>(s.node[e])] *
+                  s.gradient[e];
     const double volume = P.volume0[p] * P.F[p].determinant();
-    const Vec<D> volume_flux = -(volume * T.conductivity[static_cast<std::size_t>(P.material[p])]) * gradient;
+    const Vec<D> volume_flux =
+        -(volume * T.conductivity[static_cast<std::size_t>(P.material[p])]) * gradient;
     const double source = edges ? T.edge_source[p] : 0.0;
     for (int e = 0; e < s.count; ++e)
       T.load[field_at<D, Partitioned>(state, p, e)][static_cast<std::size_t>(s.node[e])] +=
@@ -313,14 +328,15 @@ void thermal_finish(StepState<D>& state, double dt) {
     for (int f = 0; f < fields; ++f)
       for (std::int64_t i = 0; i < count; ++i) T.load[f][i] += T.wall_heat[f][i] / dt;
 
-  // Nodal rates (eq. (55)); two fields that are not separable share one rate.
+        // Nodal rates (eq. (55)); two fields that are not separable share one rate.
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
     for (int f = 0; f < fields; ++f)
       if (T.capacity[f][i] > T.negligible_capacity) T.rate[f][i] = T.load[f][i] / T.capacity[f][i];
     if constexpr (Partitioned) {
       if (T.capacity[0][i] > T.negligible_capacity && T.capacity[1][i] > T.negligible_capacity &&
-          (!node_separable(state, static_cast<std::size_t>(i)) || T.merged[static_cast<std::size_t>(i)])) {
+          (!node_separable(state, static_cast<std::size_t>(i)) ||
+           T.merged[static_cast<std::size_t>(i)])) {
         const double shared = (T.load[0][i] + T.load[1][i]) / (T.capacity[0][i] + T.capacity[1][i]);
         T.rate[0][i] = T.rate[1][i] = shared;
       }
@@ -328,21 +344,22 @@ void thermal_finish(StepState<D>& state, double dt) {
   }
   // θ = θ̄ on Γ_θ: the rate that takes the node there in this step.
   for (const auto& [i, f, value] : T.fixed_nodes)
-    T.rate[static_cast<std::size_t>(f)][i] = (value - T.temperature[static_cast<std::size_t>(f)][i]) / dt;
+    T.rate[static_cast<std::size_t>(f)][i] =
+        (value - T.temperature[static_cast<std::size_t>(f)][i]) / dt;
 
   T.dt_limit = update_particle_temperatures<D, Kind, Partitioned>(state, dt);
 }
 
-#define FRAGMPM_INSTANTIATE_KIND(D, K, PART)                                        \
-  template void thermal_begin<D, ShapeFunctionKind::K, PART>(StepState<D>&);        \
+#define FRAGMPM_INSTANTIATE_KIND(D, K, PART)                                 \
+  template void thermal_begin<D, ShapeFunctionKind::K, PART>(StepState<D>&); \
   template void thermal_finish<D, ShapeFunctionKind::K, PART>(StepState<D>&, double);
-#define FRAGMPM_INSTANTIATE(D)                                                      \
-  template struct ThermalState<D>;                                                  \
-  FRAGMPM_INSTANTIATE_KIND(D, linear, false)                                        \
-  FRAGMPM_INSTANTIATE_KIND(D, linear, true)                                         \
-  FRAGMPM_INSTANTIATE_KIND(D, ugimp, false)                                         \
-  FRAGMPM_INSTANTIATE_KIND(D, ugimp, true)                                          \
-  FRAGMPM_INSTANTIATE_KIND(D, cpdi, false)                                          \
+#define FRAGMPM_INSTANTIATE(D)               \
+  template struct ThermalState<D>;           \
+  FRAGMPM_INSTANTIATE_KIND(D, linear, false) \
+  FRAGMPM_INSTANTIATE_KIND(D, linear, true)  \
+  FRAGMPM_INSTANTIATE_KIND(D, ugimp, false)  \
+  FRAGMPM_INSTANTIATE_KIND(D, ugimp, true)   \
+  FRAGMPM_INSTANTIATE_KIND(D, cpdi, false)   \
   FRAGMPM_INSTANTIATE_KIND(D, cpdi, true)
 FRAGMPM_INSTANTIATE(2)
 FRAGMPM_INSTANTIATE(3)

@@ -26,11 +26,14 @@ struct ThermalState {
   /// Thermal part of the trial Cauchy stress of a particle ([XLS21] eq. (3)) [Pa].
   Mat<D> stress(int material, const Mat<D>& F, double temperature) const {
     const std::size_t m = static_cast<std::size_t>(material);
-    return thermal_cauchy_stress<D>(bulk[m], expansion[m], temperature, reference[m], F.determinant());
+    return thermal_cauchy_stress<D>(bulk[m], expansion[m], temperature, reference[m],
+                                    F.determinant());
   }
   /// Interface temperature max(θ₀ᵢ, θ₁ᵢ) of a two-field node for the friction law
   /// ([XLS21] eq. (15)) [K].
-  double interface_temperature(std::size_t i) const { return std::max(temperature[0][i], temperature[1][i]); }
+  double interface_temperature(std::size_t i) const {
+    return std::max(temperature[0][i], temperature[1][i]);
+  }
 
   std::vector<double> bulk, expansion, reference, conductivity, specific_heat;
   std::vector<Degradation> degradation;
@@ -40,7 +43,7 @@ struct ThermalState {
   std::array<std::vector<double>, 2> capacity, heat, load, temperature, rate, wall_heat;
   std::array<std::vector<Vec<D>>, 2> domain_gradient;
   std::vector<FixedNode> fixed_nodes;
-  std::vector<char> merged;     ///< per node: a thermally perfect contact this step
+  std::vector<char> merged;       ///< per node: a thermally perfect contact this step
   bool boundary_measure = false;  ///< a flux or convection wall needs the face measure
   bool wall_friction = false;     ///< a contact wall may do friction work
   double negligible_capacity = 0.0;

@@ -1,6 +1,6 @@
-// Rigid walls ([NBS18] §2.12: a field in contact with a wall takes the wall's velocity in the normal
-// direction; the friction law limits the tangential change). Node impulses J give each wall's
-// reaction force and the wall work Σ J·v_wall. Friction work comes from the same exchange as
+// Rigid walls ([NBS18] §2.12: a field in contact with a wall takes the wall's velocity in the
+// normal direction; the friction law limits the tangential change). Node impulses J give each
+// wall's reaction force and the wall work Σ J·v_wall. Friction work comes from the same exchange as
 // between two fields, with the wall as an infinitely heavy partner.
 #include <limits>
 
@@ -14,15 +14,18 @@ namespace {
 
 /// The velocity change of one field at a wall node, with the friction work it does.
 template <int D>
-Vec<D> wall_change(const StepState<D>& state, const WallSpec<D>& wall, const Vec<D>& wall_velocity, int f,
-                   std::size_t i, double dt, double& friction) {
+Vec<D> wall_change(const StepState<D>& state, const WallSpec<D>& wall, const Vec<D>& wall_velocity,
+                   int f, std::size_t i, double dt, double& friction) {
   const double m = state.nodes.mass[f][i];
   const Vec<D>& velocity = state.nodes.velocity[f][i];
   const Vec<D> relative = velocity - wall_velocity;
   switch (wall.kind) {
-    case WallKind::fixed: return -relative;
-    case WallKind::roller: return -relative.dot(wall.normal) * wall.normal;
-    case WallKind::contact: break;
+    case WallKind::fixed:
+      return -relative;
+    case WallKind::roller:
+      return -relative.dot(wall.normal) * wall.normal;
+    case WallKind::contact:
+      break;
   }
   ContactNode<D> pair;
   pair.mass_a = m;
@@ -71,7 +74,8 @@ void apply_walls(StepState<D>& state, double dt) {
     scratch.nodes.clear();
     for_each_node_behind_plane<D>(state.grid, wall_point, wall.normal, tolerance,
                                   [&](std::int64_t i, const Vec<D>& x) {
-                                    if (wall.region.contains(x, held_shift, tolerance)) scratch.nodes.push_back(i);
+                                    if (wall.region.contains(x, held_shift, tolerance))
+                                      scratch.nodes.push_back(i);
                                   });
     const std::int64_t count = static_cast<std::int64_t>(scratch.nodes.size());
     scratch.impulse.resize(scratch.nodes.size());

@@ -1,14 +1,15 @@
 // `fragmpm analyze` as a function (see analyze.hpp): read the run file, label and measure the
-// fragments of the chosen frames, summarise every frame, and write tables, figures and run-file groups.
+// fragments of the chosen frames, summarise every frame, and write tables, figures and run-file
+// groups.
 #include "fragmpm/pipeline/analyze.hpp"
+
+#include <fmt/format.h>
 
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <limits>
 #include <optional>
-
-#include <fmt/format.h>
 
 #include "analyze_frames.hpp"
 #include "fragmpm/analysis/figure_error.hpp"
@@ -39,29 +40,32 @@ std::string frame_label(const AnalyzedFrame& f) {
 
 std::string describe(const analysis::FrameFragments& r) {
   const analysis::FragmentSummary& s = r.summary;
-  std::string text = fmt::format("{} fragments + {} fines ({} particles), {} particles masked", s.fragments, s.fines,
-                                 s.fine_particles, s.masked_particles);
+  std::string text = fmt::format("{} fragments + {} fines ({} particles), {} particles masked",
+                                 s.fragments, s.fines, s.fine_particles, s.masked_particles);
   if (s.fragments > 0)
     text += fmt::format("; mean equivalent diameter {} (mass-weighted {}, largest {})",
                         analysis::format_si(s.mean_equivalent_diameter, "m", 3),
                         analysis::format_si(s.mass_mean_equivalent_diameter, "m", 3),
                         analysis::format_si(s.largest_equivalent_diameter, "m", 3));
-  text += r.raster_checked ? "\n      " + r.raster.summary() : "\n      raster check skipped: " + r.raster_note;
+  text += r.raster_checked ? "\n      " + r.raster.summary()
+                           : "\n      raster check skipped: " + r.raster_note;
   return text;
 }
 
 /// The /fragments/ groups this analysis will write that exist already: fine (and listed) when an
 /// earlier analyze wrote them, refused otherwise.
 /// `names` are relative to /fragments ("000002", "series").
-std::vector<std::string> groups_to_replace(const mpm::RunFileReader& file, const std::vector<std::string>& names) {
+std::vector<std::string> groups_to_replace(const mpm::RunFileReader& file,
+                                           const std::vector<std::string>& names) {
   std::vector<std::string> replace;
   for (const std::string& name : names) {
     const mpm::RunFileReader::GroupState state = file.fragment_group(name);
     if (!state.exists) continue;
     if (!state.is_group || state.written_by != kWrittenBy)
-      throw AnalyzeError(fmt::format("{}: /fragments/{} exists and was not written by fragmpm analyze; refusing to "
-                                     "replace it (use --csv-only to leave the run file alone)",
-                                     file.path(), name));
+      throw AnalyzeError(fmt::format(
+          "{}: /fragments/{} exists and was not written by fragmpm analyze; refusing to "
+          "replace it (use --csv-only to leave the run file alone)",
+          file.path(), name));
     replace.push_back("fragments/" + name);
   }
   return replace;
@@ -75,10 +79,13 @@ void set_options(mpm::TableGroup& g, const analysis::FragmentOptions& o) {
   g.attributes.push_back({"current_reach", o.current_reach});
 }
 
-mpm::TableGroup frame_group_table(const AnalyzeOptions& o, const AnalyzeResult& r, const AnalyzedFrame& f) {
+mpm::TableGroup frame_group_table(const AnalyzeOptions& o, const AnalyzeResult& r,
+                                  const AnalyzedFrame& f) {
   mpm::TableGroup g;
   set_options(g, o.fragments);
-  auto attribute = [&](const char* name, mpm::TableAttribute value) { g.attributes.push_back({name, std::move(value)}); };
+  auto attribute = [&](const char* name, mpm::TableAttribute value) {
+    g.attributes.push_back({name, std::move(value)});
+  };
   attribute("frame", static_cast<std::int64_t>(f.frame));
   attribute("time", f.time);
   attribute("step", static_cast<std::int64_t>(f.step));
@@ -105,12 +112,14 @@ void write_run_groups(const AnalyzeOptions& o, const AnalyzeResult& r) {
     try {
       return mpm::FragmentGroupWriter::open(o.run_path);
     } catch (const mpm::RunFileError& e) {
-      throw AnalyzeError(fmt::format("cannot write the fragment tables into the run file ({}); the CSV files are "
-                                     "written; use --csv-only to skip the run file",
-                                     e.what()));
+      throw AnalyzeError(
+          fmt::format("cannot write the fragment tables into the run file ({}); the CSV files are "
+                      "written; use --csv-only to skip the run file",
+                      e.what()));
     }
   }();
-  for (const AnalyzedFrame& f : r.frames) file.replace(fmt::format("{:06d}", f.frame), frame_group_table(o, r, f));
+  for (const AnalyzedFrame& f : r.frames)
+    file.replace(fmt::format("{:06d}", f.frame), frame_group_table(o, r, f));
   mpm::TableGroup series;
   set_options(series, o.fragments);
   if (!r.platen.empty()) series.attributes.push_back({"platen", r.platen});
@@ -125,7 +134,8 @@ void write_figures(const AnalyzeResult& r, std::vector<std::string>& files, std:
     curves.push_back({frame_label(f), f.fragments.equivalent_diameter});
   }
   std::vector<analysis::CdfCurve> roundness;
-  for (const AnalyzedFrame& f : r.frames) roundness.push_back({frame_label(f), f.fragments.roundness});
+  for (const AnalyzedFrame& f : r.frames)
+    roundness.push_back({frame_label(f), f.fragments.roundness});
   using analysis::CdfQuantity;
   using analysis::CdfWeighting;
   struct Figure {
@@ -134,13 +144,23 @@ void write_figures(const AnalyzeResult& r, std::vector<std::string>& files, std:
   };
   const Figure figures[] = {
       {"cdf_equivalent_diameter.png",
-       [&] { return analysis::cdf_plot_spec(curves, CdfQuantity::equivalent_diameter, CdfWeighting::number); }},
+       [&] {
+         return analysis::cdf_plot_spec(curves, CdfQuantity::equivalent_diameter,
+                                        CdfWeighting::number);
+       }},
       {"cdf_equivalent_diameter_mass.png",
-       [&] { return analysis::cdf_plot_spec(curves, CdfQuantity::equivalent_diameter, CdfWeighting::mass); }},
+       [&] {
+         return analysis::cdf_plot_spec(curves, CdfQuantity::equivalent_diameter,
+                                        CdfWeighting::mass);
+       }},
       {"cdf_roundness.png",
-       [&] { return analysis::cdf_plot_spec(roundness, CdfQuantity::roundness, CdfWeighting::number); }},
+       [&] {
+         return analysis::cdf_plot_spec(roundness, CdfQuantity::roundness, CdfWeighting::number);
+       }},
       {"cdf_roundness_mass.png",
-       [&] { return analysis::cdf_plot_spec(roundness, CdfQuantity::roundness, CdfWeighting::mass); }},
+       [&] {
+         return analysis::cdf_plot_spec(roundness, CdfQuantity::roundness, CdfWeighting::mass);
+       }},
       {"fragment_count.png", [&] { return analysis::fragment_count_spec(r.series); }},
       {"fragment_size.png", [&] { return analysis::fragment_size_spec(r.series); }},
   };
@@ -165,13 +185,15 @@ mpm::RunFileReader open_run(const std::string& path) {
   }
 }
 
-/// The CSV tables of the analysed frames and the count / size series; their paths go to result.files.
+/// The CSV tables of the analysed frames and the count / size series; their paths go to
+/// result.files.
 void write_tables(AnalyzeResult& result) {
   const fs::path dir(result.output_dir);
   for (const AnalyzedFrame& f : result.frames) {
     const std::string n = fmt::format("{:06d}", f.frame);
     const bool theta = f.fragments.has_temperature;
-    const std::string files[] = {(dir / ("fragments_" + n + ".csv")).string(), (dir / ("fines_" + n + ".csv")).string(),
+    const std::string files[] = {(dir / ("fragments_" + n + ".csv")).string(),
+                                 (dir / ("fines_" + n + ".csv")).string(),
                                  (dir / ("cdf_equivalent_diameter_" + n + ".csv")).string(),
                                  (dir / ("cdf_roundness_" + n + ".csv")).string()};
     try {
@@ -218,59 +240,71 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
     const mpm::RunSeries series = file.read_series(platen_series(run));
     std::vector<std::string> moving;
     result.platen = choose_platen(series, run, o.platen, moving);
-    const std::vector<double> travel = result.platen.empty() ? std::vector<double>{}
-                                                             : platen_travel(series, run, result.platen);
+    const std::vector<double> travel =
+        result.platen.empty() ? std::vector<double>{} : platen_travel(series, run, result.platen);
     const std::vector<Selected> selection = select_frames(o, run, travel, moving);
 
     if (o.write_run_file) {
       std::vector<std::string> names{"series"};
-      for (const Selected& s : selection) names.push_back(fmt::format("{:06d}", run.frames[s.position].index));
-      for (const std::string& name : groups_to_replace(file, names)) result.replaced_groups.push_back("/" + name);
+      for (const Selected& s : selection)
+        names.push_back(fmt::format("{:06d}", run.frames[s.position].index));
+      for (const std::string& name : groups_to_replace(file, names))
+        result.replaced_groups.push_back("/" + name);
     }
     fs::create_directories(result.output_dir, ec);
     if (ec || !fs::is_directory(result.output_dir))
-      throw AnalyzeError(fmt::format("{}: cannot create the output directory ({})", result.output_dir, ec.message()));
+      throw AnalyzeError(fmt::format("{}: cannot create the output directory ({})",
+                                     result.output_dir, ec.message()));
 
     const FrameInfo& first = run.frames.front();
     const mpm::Particles<2> reference = read_analysis_frame(file, run, first.index);
-    say(log, fmt::format("fragmpm analyze: {} ({} particles, {} frames; reference configuration: frame {} at t = {}{})",
-                         path, reference.size(), run.frames.size(), first.index, analysis::format_si(first.time, "s", 4),
-                         result.platen.empty() ? "" : fmt::format("; platen: wall '{}'", result.platen)));
-    say(log, fmt::format("  mask d >= {}, fines below {} particles", o.fragments.d_mask, o.fragments.min_particles));
+    say(log, fmt::format(
+                 "fragmpm analyze: {} ({} particles, {} frames; reference configuration: frame {} "
+                 "at t = {}{})",
+                 path, reference.size(), run.frames.size(), first.index,
+                 analysis::format_si(first.time, "s", 4),
+                 result.platen.empty() ? "" : fmt::format("; platen: wall '{}'", result.platen)));
+    say(log, fmt::format("  mask d >= {}, fines below {} particles", o.fragments.d_mask,
+                         o.fragments.min_particles));
 
     std::size_t next = 0;  // next entry of `selection`
     for (std::size_t k = 0; k < run.frames.size(); ++k) {
       const FrameInfo& info = run.frames[k];
-      const mpm::Particles<2> current = k == 0 ? reference : read_analysis_frame(file, run, info.index);
+      const mpm::Particles<2> current =
+          k == 0 ? reference : read_analysis_frame(file, run, info.index);
       if (current.size() != reference.size())
-        throw AnalyzeError(fmt::format("{}: {} has {} particles but the reference frame {} has {}", path,
-                                       frame_group(info.index), current.size(), first.index, reference.size()));
+        throw AnalyzeError(fmt::format("{}: {} has {} particles but the reference frame {} has {}",
+                                       path, frame_group(info.index), current.size(), first.index,
+                                       reference.size()));
       analysis::FragmentSeriesPoint point;
       point.frame = info.index;
       point.step = info.step;
       point.time = info.time;
-      point.platen_displacement = travel.empty() ? std::numeric_limits<double>::quiet_NaN() : travel[k];
+      point.platen_displacement =
+          travel.empty() ? std::numeric_limits<double>::quiet_NaN() : travel[k];
       try {
-      if (next < selection.size() && selection[next].position == k) {
-        AnalyzedFrame f;
-        f.frame = info.index;
-        f.step = info.step;
-        f.time = info.time;
-        f.platen_displacement = point.platen_displacement;
-        f.request = selection[next].request;
-        f.fragments = analysis::analyze_fragments(reference, current, o.fragments);
-        point.summary = f.fragments.summary;
-        say(log, fmt::format("  {} -> frame {} (t = {}, step {}{}): {}", f.request, f.frame,
-                             analysis::format_si(f.time, "s", 4), f.step,
-                             std::isfinite(f.platen_displacement)
-                                 ? fmt::format(", platen displacement {}", analysis::format_si(f.platen_displacement, "m", 4))
-                                 : "",
-                             describe(f.fragments)));
-        result.frames.push_back(std::move(f));
-        ++next;
-      } else {
-        point.summary = analysis::summarize_fragments(current, analysis::label_fragments(reference, current, o.fragments));
-      }
+        if (next < selection.size() && selection[next].position == k) {
+          AnalyzedFrame f;
+          f.frame = info.index;
+          f.step = info.step;
+          f.time = info.time;
+          f.platen_displacement = point.platen_displacement;
+          f.request = selection[next].request;
+          f.fragments = analysis::analyze_fragments(reference, current, o.fragments);
+          point.summary = f.fragments.summary;
+          say(log, fmt::format("  {} -> frame {} (t = {}, step {}{}): {}", f.request, f.frame,
+                               analysis::format_si(f.time, "s", 4), f.step,
+                               std::isfinite(f.platen_displacement)
+                                   ? fmt::format(", platen displacement {}",
+                                                 analysis::format_si(f.platen_displacement, "m", 4))
+                                   : "",
+                               describe(f.fragments)));
+          result.frames.push_back(std::move(f));
+          ++next;
+        } else {
+          point.summary = analysis::summarize_fragments(
+              current, analysis::label_fragments(reference, current, o.fragments));
+        }
       } catch (const std::invalid_argument& e) {
         throw AnalyzeError(fmt::format("{}: {}: {}", path, frame_group(info.index), e.what()));
       }
@@ -279,12 +313,13 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
   }
 
   write_tables(result);
-  say(log, fmt::format("  tables ({} frames) and the count / size series over {} frames -> {}", result.frames.size(),
-                       result.series.size(), result.output_dir));
+  say(log, fmt::format("  tables ({} frames) and the count / size series over {} frames -> {}",
+                       result.frames.size(), result.series.size(), result.output_dir));
   if (o.figures) {
     const std::size_t before = result.files.size();
     write_figures(result, result.files, log);
-    if (result.files.size() > before) say(log, fmt::format("  {} figures -> {}", result.files.size() - before, result.output_dir));
+    if (result.files.size() > before)
+      say(log, fmt::format("  {} figures -> {}", result.files.size() - before, result.output_dir));
   }
   if (o.write_run_file) {
     write_run_groups(o, result);

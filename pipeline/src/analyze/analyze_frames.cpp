@@ -1,14 +1,14 @@
 // Run-file reading and frame selection for `fragmpm analyze` (see analyze_frames.hpp).
 #include "analyze_frames.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-
-#include <fmt/format.h>
 
 #include "fragmpm/analysis/si_format.hpp"
 #include "fragmpm/pipeline/units.hpp"
@@ -25,7 +25,8 @@ std::string frame_range(const RunIndex& run) {
   const FrameInfo& a = run.frames.front();
   const FrameInfo& b = run.frames.back();
   return fmt::format("{} frames, {} (t = {}) to {} (t = {})", run.frames.size(), a.index,
-                     analysis::format_si(a.time, "s", 4), b.index, analysis::format_si(b.time, "s", 4));
+                     analysis::format_si(a.time, "s", 4), b.index,
+                     analysis::format_si(b.time, "s", 4));
 }
 
 /// Position of the frame nearest to `target` among `values` (one per frame); AnalyzeError when
@@ -55,12 +56,15 @@ bool is_bare_number(const std::string& text) {
 
 }  // namespace
 
-std::string frame_group(int index) { return fmt::format("/frames/{:06d}", index); }
+std::string frame_group(int index) {
+  return fmt::format("/frames/{:06d}", index);
+}
 
 RunIndex read_run_index(const mpm::RunFileReader& file) {
   const std::string& path = file.path();
   if (file.dimension() != 2)
-    throw AnalyzeError(fmt::format("{}: a {}D run; fragment analysis handles 2D runs", path, file.dimension()));
+    throw AnalyzeError(
+        fmt::format("{}: a {}D run; fragment analysis handles 2D runs", path, file.dimension()));
   RunIndex run;
   run.path = path;
   run.walls = file.wall_names();
@@ -69,15 +73,18 @@ RunIndex read_run_index(const mpm::RunFileReader& file) {
   return run;
 }
 
-mpm::Particles<2> read_analysis_frame(const mpm::RunFileReader& file, const RunIndex& run, int index) {
+mpm::Particles<2> read_analysis_frame(const mpm::RunFileReader& file, const RunIndex& run,
+                                      int index) {
   const std::string name = frame_group(index);
   const mpm::FrameEntry* frame = file.find_frame(index);
   for (const char* field : {"damage", "volume0"})
     if (frame && !frame->has(field))
-      throw AnalyzeError(fmt::format(
-          "{}: {} has no '{}' dataset: the run was written without {} data, so its fragments cannot be "
-          "found (list \"{}\" in the scene's output fields and run it again)",
-          run.path, name, field, field == std::string("damage") ? "damage" : "reference volume", field));
+      throw AnalyzeError(
+          fmt::format("{}: {} has no '{}' dataset: the run was written without {} data, so its "
+                      "fragments cannot be "
+                      "found (list \"{}\" in the scene's output fields and run it again)",
+                      run.path, name, field,
+                      field == std::string("damage") ? "damage" : "reference volume", field));
   return file.read_frame<2>(index);
 }
 
@@ -87,8 +94,8 @@ std::vector<std::string> platen_series(const RunIndex& run) {
   return names;
 }
 
-std::string choose_platen(const mpm::RunSeries& series, const RunIndex& run, const std::string& requested,
-                          std::vector<std::string>& moving) {
+std::string choose_platen(const mpm::RunSeries& series, const RunIndex& run,
+                          const std::string& requested, std::vector<std::string>& moving) {
   moving.clear();
   for (const std::string& w : run.walls) {
     const std::string name = mpm::RunSeries::wall_displacement(w);
@@ -102,17 +109,19 @@ std::string choose_platen(const mpm::RunSeries& series, const RunIndex& run, con
   }
   if (!requested.empty()) {
     if (std::find(run.walls.begin(), run.walls.end(), requested) == run.walls.end())
-      throw AnalyzeError(fmt::format("--platen '{}': the run has no such wall (its walls: {})", requested,
-                                     list(run.walls)));
+      throw AnalyzeError(fmt::format("--platen '{}': the run has no such wall (its walls: {})",
+                                     requested, list(run.walls)));
     return requested;
   }
   return moving.size() == 1 ? moving.front() : std::string();
 }
 
-std::vector<double> platen_travel(const mpm::RunSeries& series, const RunIndex& run, const std::string& wall) {
+std::vector<double> platen_travel(const mpm::RunSeries& series, const RunIndex& run,
+                                  const std::string& wall) {
   const std::string name = mpm::RunSeries::wall_displacement(wall);
   if (!series.has(name) || !series.has("time") || !series.has("step"))
-    throw AnalyzeError(fmt::format("{}: /series/{} (with /series/time and /series/step) is missing", run.path, name));
+    throw AnalyzeError(fmt::format("{}: /series/{} (with /series/time and /series/step) is missing",
+                                   run.path, name));
   const std::vector<double>& u = series.column(name);
   const std::vector<double>& time = series.column("time");
   std::vector<std::int64_t> step;
@@ -130,9 +139,12 @@ std::vector<double> platen_travel(const mpm::RunSeries& series, const RunIndex& 
       continue;
     }
     // No row for this step: interpolate linearly in time (clamped at the ends).
-    const auto hi = std::lower_bound(time.begin(), time.begin() + static_cast<std::ptrdiff_t>(rows), f.time);
-    if (hi == time.begin()) out.push_back(travel.front());
-    else if (hi == time.begin() + static_cast<std::ptrdiff_t>(rows)) out.push_back(travel[rows - 1]);
+    const auto hi =
+        std::lower_bound(time.begin(), time.begin() + static_cast<std::ptrdiff_t>(rows), f.time);
+    if (hi == time.begin())
+      out.push_back(travel.front());
+    else if (hi == time.begin() + static_cast<std::ptrdiff_t>(rows))
+      out.push_back(travel[rows - 1]);
     else {
       const std::size_t b = static_cast<std::size_t>(hi - time.begin()), a = b - 1;
       const double w = time[b] > time[a] ? (f.time - time[a]) / (time[b] - time[a]) : 1.0;
@@ -142,7 +154,8 @@ std::vector<double> platen_travel(const mpm::RunSeries& series, const RunIndex& 
   return out;
 }
 
-std::vector<Selected> select_frames(const AnalyzeOptions& o, const RunIndex& run, const std::vector<double>& travel,
+std::vector<Selected> select_frames(const AnalyzeOptions& o, const RunIndex& run,
+                                    const std::vector<double>& travel,
                                     const std::vector<std::string>& moving) {
   std::vector<Selected> picked;
   std::vector<double> times;
@@ -150,20 +163,26 @@ std::vector<Selected> select_frames(const AnalyzeOptions& o, const RunIndex& run
   auto by_displacement = [&](double u, const std::string& text, const std::string& request) {
     if (travel.empty())
       throw AnalyzeError(fmt::format(
-          "{} '{}' is a platen displacement, but {}; give --platen NAME (walls of this run: {})", request, text,
-          moving.empty() ? "no wall of this run moves" : "several walls move (" + list(moving) + ")", list(run.walls)));
+          "{} '{}' is a platen displacement, but {}; give --platen NAME (walls of this run: {})",
+          request, text,
+          moving.empty() ? "no wall of this run moves"
+                         : "several walls move (" + list(moving) + ")",
+          list(run.walls)));
     if (!(u >= 0.0))
-      throw AnalyzeError(fmt::format("{} '{}': a platen displacement is a distance travelled, >= 0", request, text));
+      throw AnalyzeError(fmt::format("{} '{}': a platen displacement is a distance travelled, >= 0",
+                                     request, text));
     const auto [lo, hi] = std::minmax_element(travel.begin(), travel.end());
-    const std::size_t k = nearest(
-        travel, u, fmt::format("platen displacement {}", analysis::format_si(u, "m", 4)),
-        fmt::format("the platen travelled {} to {} between the first and last frame", analysis::format_si(*lo, "m", 4),
-                    analysis::format_si(*hi, "m", 4)));
+    const std::size_t k =
+        nearest(travel, u, fmt::format("platen displacement {}", analysis::format_si(u, "m", 4)),
+                fmt::format("the platen travelled {} to {} between the first and last frame",
+                            analysis::format_si(*lo, "m", 4), analysis::format_si(*hi, "m", 4)));
     picked.push_back({k, fmt::format("{} {}", request, text)});
   };
   for (const std::string& text : o.at) {
     if (is_bare_number(text))
-      throw AnalyzeError(fmt::format("--at '{}': give a unit, a time (e.g. 20us) or a platen displacement (e.g. 0.8mm)", text));
+      throw AnalyzeError(fmt::format(
+          "--at '{}': give a unit, a time (e.g. 20us) or a platen displacement (e.g. 0.8mm)",
+          text));
     try {
       const double t = parse_quantity(text, QuantityKind::time);
       const std::size_t k = nearest(times, t, fmt::format("t = {}", analysis::format_si(t, "s", 4)),
@@ -176,8 +195,9 @@ std::vector<Selected> select_frames(const AnalyzeOptions& o, const RunIndex& run
     try {
       u = parse_quantity(text, QuantityKind::length);
     } catch (const UnitError& e) {
-      throw AnalyzeError(fmt::format("--at '{}': expected a time (e.g. 20us) or a platen displacement (e.g. 0.8mm): {}",
-                                     text, e.what()));
+      throw AnalyzeError(fmt::format(
+          "--at '{}': expected a time (e.g. 20us) or a platen displacement (e.g. 0.8mm): {}", text,
+          e.what()));
     }
     by_displacement(u, text, "--at");
   }
@@ -192,8 +212,10 @@ std::vector<Selected> select_frames(const AnalyzeOptions& o, const RunIndex& run
   }
   for (const std::string& text : o.frames) {
     int index = 0;
-    if (text == "last") index = run.frames.back().index;
-    else if (text == "first") index = run.frames.front().index;
+    if (text == "last")
+      index = run.frames.back().index;
+    else if (text == "first")
+      index = run.frames.front().index;
     else {
       std::size_t used = 0;
       try {
@@ -202,12 +224,14 @@ std::vector<Selected> select_frames(const AnalyzeOptions& o, const RunIndex& run
         used = 0;
       }
       if (used == 0 || used != text.size())
-        throw AnalyzeError(fmt::format("--frame '{}': expected a frame index, 'first' or 'last'", text));
+        throw AnalyzeError(
+            fmt::format("--frame '{}': expected a frame index, 'first' or 'last'", text));
     }
-    const auto it = std::find_if(run.frames.begin(), run.frames.end(), [&](const FrameInfo& f) { return f.index == index; });
+    const auto it = std::find_if(run.frames.begin(), run.frames.end(),
+                                 [&](const FrameInfo& f) { return f.index == index; });
     if (it == run.frames.end())
-      throw AnalyzeError(fmt::format("{}: no frame {} ({} does not exist; the run has {})", run.path, index,
-                                     frame_group(index), frame_range(run)));
+      throw AnalyzeError(fmt::format("{}: no frame {} ({} does not exist; the run has {})",
+                                     run.path, index, frame_group(index), frame_range(run)));
     picked.push_back({static_cast<std::size_t>(it - run.frames.begin()), "--frame " + text});
   }
   if (o.at.empty() && o.at_displacement.empty() && o.frames.empty()) {
@@ -222,10 +246,12 @@ std::vector<Selected> select_frames(const AnalyzeOptions& o, const RunIndex& run
     }
   }
   // Frame order, each frame once (the first request that chose it names it).
-  std::stable_sort(picked.begin(), picked.end(), [](const Selected& a, const Selected& b) { return a.position < b.position; });
-  picked.erase(std::unique(picked.begin(), picked.end(),
-                           [](const Selected& a, const Selected& b) { return a.position == b.position; }),
-               picked.end());
+  std::stable_sort(picked.begin(), picked.end(),
+                   [](const Selected& a, const Selected& b) { return a.position < b.position; });
+  picked.erase(
+      std::unique(picked.begin(), picked.end(),
+                  [](const Selected& a, const Selected& b) { return a.position == b.position; }),
+      picked.end());
   return picked;
 }
 

@@ -37,25 +37,32 @@ int execute(AnalyzeArguments a) {
 void add_analyze_command(CLI::App& app, CommandResult& result) {
   auto a = std::make_shared<AnalyzeArguments>();
   AnalyzeOptions& o = a->options;
-  CLI::App* c = app.add_subcommand(
-      "analyze",
-      "Fragments of a run: tables (CSV and /fragments/ in the run file), size and roundness CDFs, count and mean "
-      "size against time, figures");
+  CLI::App* c = app.add_subcommand("analyze",
+                                   "Fragments of a run: tables (CSV and /fragments/ in the run "
+                                   "file), size and roundness CDFs, count and mean "
+                                   "size against time, figures");
   c->add_option("run", o.run_path, "Run file (HDF5) written by fragmpm run")->required();
   c->add_option("--at", o.at,
-                "Frames nearest to these times (\"20us,50us\") or platen displacements (\"0.2mm,0.8mm\"); a unit "
+                "Frames nearest to these times (\"20us,50us\") or platen displacements "
+                "(\"0.2mm,0.8mm\"); a unit "
                 "is required. Default: the frames at 25, 50, 75 and 100 % of the run")
       ->delimiter(',');
-  c->add_option("--at-displacement", o.at_displacement,
-                "Frames nearest to these platen displacements (\"0.2mm,0.8mm\"; a bare number is metres)")
+  c->add_option(
+       "--at-displacement", o.at_displacement,
+       "Frames nearest to these platen displacements (\"0.2mm,0.8mm\"; a bare number is metres)")
       ->delimiter(',');
   c->add_option("--frame", o.frames, "Frame indices, or first / last")->delimiter(',');
-  c->add_option("--platen", o.platen, "Wall whose displacement is the platen travel (default: the only moving wall)");
-  c->add_option("-o,--output", o.output_dir, "Directory for CSV tables and figures (default: RUN_fragments/ beside the run file)");
-  c->add_option("--d-mask", o.fragments.d_mask, "Particles with damage d >= this belong to no fragment")
+  c->add_option("--platen", o.platen,
+                "Wall whose displacement is the platen travel (default: the only moving wall)");
+  c->add_option(
+      "-o,--output", o.output_dir,
+      "Directory for CSV tables and figures (default: RUN_fragments/ beside the run file)");
+  c->add_option("--d-mask", o.fragments.d_mask,
+                "Particles with damage d >= this belong to no fragment")
       ->capture_default_str();
   c->add_option("--min-particles", o.fragments.min_particles,
-                "Fragments with fewer particles are reported as fines (4 = one cell at 2 x 2 particles per cell)")
+                "Fragments with fewer particles are reported as fines (4 = one cell at 2 x 2 "
+                "particles per cell)")
       ->capture_default_str();
   c->add_flag("--csv-only", a->csv_only, "Do not write /fragments/ groups into the run file");
   c->add_flag("--no-figures", a->no_figures, "Do not write the PNG figures");

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <memory>
-#include <optional>
 #include <map>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,15 +53,14 @@ struct BenchCase {
   int steps;
 };
 
-
 mpm::Problem<2> bench_block(const std::string& scene, long long target_particles) {
   // 2×2 particles per cell over a 100 mm square block: N = 4 (0.1/h)².
   const double cells = std::round(std::sqrt(double(target_particles) / 4.0));
   const double cell_size = 0.1 / cells;
-  mpm::Problem<2> problem = parse_scene(
-      with_overrides(embedded_scene("bench/" + scene + ".toml"),
-                     {{"grid.cell_size", toml_number(cell_size)}}),
-      "scenes/bench/" + scene + ".toml");
+  mpm::Problem<2> problem =
+      parse_scene(with_overrides(embedded_scene("bench/" + scene + ".toml"),
+                                 {{"grid.cell_size", toml_number(cell_size)}}),
+                  "scenes/bench/" + scene + ".toml");
   for (std::size_t p = 0; p < problem.particles.size(); ++p) {
     const mpm::Vec<2>& x = problem.particles.x[p];
     problem.particles.v[p] = mpm::Vec<2>(0.5 * std::sin(std::numbers::pi * x[1] / 0.1),
@@ -86,8 +85,11 @@ std::vector<PeerScene> peer_scenes() {
       {"disks", "bench/disks.toml", {{"output.interval", "0.0"}}, {{"stop.max_steps", "36"}}},
       // The paper scene itself at its 0.181 mm cell, 0-20 µs (time-to-failure damage, Weibull
       // strengths, three bodies, traction loads; adaptive Δt).
-      {"brazilian", "paper/brazilian.toml",
-       {{"grid.cell_size", "\"0.181 mm\""}, {"stop.end_time", "\"20 us\""}, {"output.interval", "0.0"}},
+      {"brazilian",
+       "paper/brazilian.toml",
+       {{"grid.cell_size", "\"0.181 mm\""},
+        {"stop.end_time", "\"20 us\""},
+        {"output.interval", "0.0"}},
        {{"stop.end_time", "\"2 us\""}}},
   };
 }
@@ -121,8 +123,10 @@ std::optional<PeerTiming> time_peer_run(const mpm::Problem<2>& problem) {
 /// Particle-steps per second of the peer scenes, median of `repeats` runs per thread count.
 int run_peer_scenes(bool quick, const std::vector<int>& thread_counts, int repeats,
                     std::size_t triad_elements) {
-  std::printf("\npeer scenes (the same problems as other MPM codes; whole run timed, median of %d run(s)%s)\n",
-              repeats, quick ? ", shortened by --quick" : "");
+  std::printf(
+      "\npeer scenes (the same problems as other MPM codes; whole run timed, median of %d "
+      "run(s)%s)\n",
+      repeats, quick ? ", shortened by --quick" : "");
   std::printf("%-18s %9s %7s %6s %9s %14s %12s %16s\n", "scene", "particles", "threads", "steps",
               "wall [s]", "particle-steps/s", "triad [GB/s]", "bytes/particle-step");
   for (const PeerScene& peer : peer_scenes()) {
@@ -139,12 +143,14 @@ int run_peer_scenes(bool quick, const std::vector<int>& thread_counts, int repea
         if (!timing) return 3;
         runs.push_back(*timing);
       }
-      std::sort(runs.begin(), runs.end(), [](const PeerTiming& a, const PeerTiming& b) { return a.wall < b.wall; });
+      std::sort(runs.begin(), runs.end(),
+                [](const PeerTiming& a, const PeerTiming& b) { return a.wall < b.wall; });
       const PeerTiming& median = runs[runs.size() / 2];
       const double rate = double(median.particles) * double(median.steps) / median.wall;
       const double bandwidth = triad_bandwidth(threads, triad_elements, quick ? 3 : 5);
-      std::printf("%-18s %9zu %7d %6lld %9.3f %14.4g %12.2f %16.1f\n", peer.label.c_str(), median.particles,
-                  threads, median.steps, median.wall, rate, bandwidth, bandwidth * 1e9 / rate);
+      std::printf("%-18s %9zu %7d %6lld %9.3f %14.4g %12.2f %16.1f\n", peer.label.c_str(),
+                  median.particles, threads, median.steps, median.wall, rate, bandwidth,
+                  bandwidth * 1e9 / rate);
       std::fflush(stdout);
     }
   }
@@ -162,42 +168,47 @@ int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_
   const std::size_t triad_elements = quick ? (std::size_t(1) << 22) : (std::size_t(1) << 24);
   if (repeats <= 0) repeats = quick ? 1 : 3;
   if (peers_only) return run_peer_scenes(quick, thread_counts, repeats, triad_elements);
-  std::printf("fragmpm bench%s: elastic block (one field) and the same block as two touching bodies "
-              "(partitioned contact), CPDI, 2x2 particles per cell, %d core(s)\n",
-              quick ? " --quick" : "", omp_get_num_procs());
+  std::printf(
+      "fragmpm bench%s: elastic block (one field) and the same block as two touching bodies "
+      "(partitioned contact), CPDI, 2x2 particles per cell, %d core(s)\n",
+      quick ? " --quick" : "", omp_get_num_procs());
   std::printf("%-18s %9s %7s %6s %9s %14s %12s %16s\n", "scene", "particles", "threads", "steps",
               "wall [s]", "particle-steps/s", "triad [GB/s]", "bytes/particle-step");
   for (const BenchCase& c : cases) {
     for (int threads : thread_counts) {
-     double elastic_rate = 0.0;
-     for (const std::string scene : {"elastic-block", "partitioned-block"}) {
-      omp_set_num_threads(threads);
-      mpm::Solver<2> solver(bench_block(scene, c.target_particles));
-      if (auto failure = solver.step()) {  // warm-up: first touch of the grid and buffers
-        std::fprintf(stderr, "bench: %s\n", failure->what.c_str());
-        return 3;
-      }
-      const auto start = Clock::now();
-      for (int s = 0; s < c.steps; ++s)
-        if (auto failure = solver.step()) {
+      double elastic_rate = 0.0;
+      for (const std::string scene : {"elastic-block", "partitioned-block"}) {
+        omp_set_num_threads(threads);
+        mpm::Solver<2> solver(bench_block(scene, c.target_particles));
+        if (auto failure = solver.step()) {  // warm-up: first touch of the grid and buffers
           std::fprintf(stderr, "bench: %s\n", failure->what.c_str());
           return 3;
         }
-      const double wall = std::chrono::duration<double>(Clock::now() - start).count();
-      const double rate = double(solver.particles().size()) * c.steps / wall;
-      const double bandwidth = triad_bandwidth(threads, triad_elements, quick ? 3 : 5);
-      std::printf("%-18s %9zu %7d %6d %9.3f %14.4g %12.2f %16.1f", scene.c_str(),
-                  solver.particles().size(), threads, c.steps, wall, rate, bandwidth,
-                  bandwidth * 1e9 / rate);
-      if (scene == "elastic-block") elastic_rate = rate;
-      else std::printf("   partitioning cost +%.0f %% per particle-step", 100.0 * (elastic_rate / rate - 1.0));
-      std::printf("\n");
-      std::fflush(stdout);
-     }
+        const auto start = Clock::now();
+        for (int s = 0; s < c.steps; ++s)
+          if (auto failure = solver.step()) {
+            std::fprintf(stderr, "bench: %s\n", failure->what.c_str());
+            return 3;
+          }
+        const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+        const double rate = double(solver.particles().size()) * c.steps / wall;
+        const double bandwidth = triad_bandwidth(threads, triad_elements, quick ? 3 : 5);
+        std::printf("%-18s %9zu %7d %6d %9.3f %14.4g %12.2f %16.1f", scene.c_str(),
+                    solver.particles().size(), threads, c.steps, wall, rate, bandwidth,
+                    bandwidth * 1e9 / rate);
+        if (scene == "elastic-block")
+          elastic_rate = rate;
+        else
+          std::printf("   partitioning cost +%.0f %% per particle-step",
+                      100.0 * (elastic_rate / rate - 1.0));
+        std::printf("\n");
+        std::fflush(stdout);
+      }
     }
   }
-  std::printf("bytes/particle-step = triad bandwidth / particle-step rate: the memory traffic one "
-              "particle-step is worth on this machine (lower is better, comparable across machines).\n");
+  std::printf(
+      "bytes/particle-step = triad bandwidth / particle-step rate: the memory traffic one "
+      "particle-step is worth on this machine (lower is better, comparable across machines).\n");
   return run_peer_scenes(quick, thread_counts, repeats, triad_elements);
 }
 
@@ -208,12 +219,19 @@ void add_bench_command(CLI::App& app, CommandResult& result) {
   auto threads = std::make_shared<std::vector<int>>();
   auto repeats = std::make_shared<int>(0);
   auto peers_only = std::make_shared<bool>(false);
-  CLI::App* bench = app.add_subcommand("bench", "Particle-steps per second next to a memory-bandwidth reference");
-  bench->add_flag("--quick", *quick, "Short run: 1e4 and 1e5 particles only, peer scenes a tenth of their steps");
-  bench->add_option("--threads", *threads, "Thread counts to measure (default: 1 and 2)")->delimiter(',');
-  bench->add_option("--repeats", *repeats, "Runs per peer scene and thread count; the median is shown (default 3, 1 with --quick)")
+  CLI::App* bench =
+      app.add_subcommand("bench", "Particle-steps per second next to a memory-bandwidth reference");
+  bench->add_flag("--quick", *quick,
+                  "Short run: 1e4 and 1e5 particles only, peer scenes a tenth of their steps");
+  bench->add_option("--threads", *threads, "Thread counts to measure (default: 1 and 2)")
+      ->delimiter(',');
+  bench
+      ->add_option(
+          "--repeats", *repeats,
+          "Runs per peer scene and thread count; the median is shown (default 3, 1 with --quick)")
       ->check(CLI::Range(1, 1000));
-  bench->add_flag("--peers-only", *peers_only, "Only the peer scenes (block, disks, Brazilian disk)");
+  bench->add_flag("--peers-only", *peers_only,
+                  "Only the peer scenes (block, disks, Brazilian disk)");
   bench->callback([quick, threads, repeats, peers_only, &result] {
     result.exit_code = execute(*quick, *threads, *repeats, *peers_only);
   });

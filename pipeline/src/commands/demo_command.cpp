@@ -3,13 +3,13 @@
 // the program; the image is found on disk, first under $FRAGMPM_SOURCE_DIR/images, then in an
 // images/ folder beside the executable or any folder above it (./build/fragmpm of a clone finds
 // <clone>/images), then in the working directory or any folder above it.
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "fragmpm/mpm/run_file.hpp"
 #include "fragmpm/pipeline/commands.hpp"
@@ -42,10 +42,11 @@ std::string find_demo_image() {
   if (!ec) add_ancestors(cwd);
   for (const fs::path& root : roots)
     if (fs::is_regular_file(root / demo_image, ec)) return (root / demo_image).string();
-  throw PipelineError(fmt::format("cannot find {} (the demo's micrograph): looked under $FRAGMPM_SOURCE_DIR, the "
-                                  "folders above the executable and above the working directory; set "
-                                  "FRAGMPM_SOURCE_DIR to the FragMPM source tree",
-                                  demo_image));
+  throw PipelineError(
+      fmt::format("cannot find {} (the demo's micrograph): looked under $FRAGMPM_SOURCE_DIR, the "
+                  "folders above the executable and above the working directory; set "
+                  "FRAGMPM_SOURCE_DIR to the FragMPM source tree",
+                  demo_image));
 }
 
 struct DemoArguments {
@@ -65,13 +66,14 @@ int execute(const DemoArguments& a) {
     o.overwrite = a.overwrite;
     o.threads = a.threads;
     o.progress = !a.quiet;
-    std::fprintf(stderr, "fragmpm demo: %s (embedded) on %s -> %s/\n", o.scene_path.c_str(), o.image.c_str(),
-                 a.output.c_str());
+    std::fprintf(stderr, "fragmpm demo: %s (embedded) on %s -> %s/\n", o.scene_path.c_str(),
+                 o.image.c_str(), a.output.c_str());
     const PipelineResult r = run_pipeline(o, stderr);
     const fs::path dir(a.output);
     std::printf("fragmpm demo: everything is in %s/\n", a.output.c_str());
     std::printf("  segmentation preview   %s\n", (dir / "segmentation.png").string().c_str());
-    std::printf("  run file (+ XDMF)      %s (%s)\n", r.run_path.c_str(), (dir / "run.xmf").string().c_str());
+    std::printf("  run file (+ XDMF)      %s (%s)\n", r.run_path.c_str(),
+                (dir / "run.xmf").string().c_str());
     std::printf("  fragment tables, CDFs  %s/\n", (dir / "fragments").string().c_str());
     std::printf("  field and series figs  %s/\n", (dir / "figures").string().c_str());
     std::printf("  summary                %s\n\n%s", r.summary_path.c_str(), r.summary.c_str());
@@ -92,9 +94,11 @@ int execute(const DemoArguments& a) {
 
 void add_demo_command(CLI::App& app, CommandResult& result) {
   auto args = std::make_shared<DemoArguments>();
-  CLI::App* cmd = app.add_subcommand(
-      "demo", "The main job on built-in data: a window of a sandstone grain mask crushed between platens, with "
-              "segmentation preview, run file, fragment tables, figures and summary (the pipeline command)");
+  CLI::App* cmd = app.add_subcommand("demo",
+                                     "The main job on built-in data: a window of a sandstone grain "
+                                     "mask crushed between platens, with "
+                                     "segmentation preview, run file, fragment tables, figures and "
+                                     "summary (the pipeline command)");
   cmd->add_option("-o,--output", args->output, "Output directory (default: fragmpm-demo)");
   cmd->add_flag("--overwrite", args->overwrite, "Write into an existing non-empty directory");
   cmd->add_option("--threads", args->threads, "OpenMP threads (default: all cores)");

@@ -6,10 +6,12 @@
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "FragMPM: micrograph → grains → DP-MPM crushing simulation → fragment statistics and figures.\n"
+      "FragMPM: micrograph → grains → DP-MPM crushing simulation → fragment statistics and "
+      "figures.\n"
       "Exit codes: 0 success, 2 bad input, 3 numerical failure (last good output kept), 1 other."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("fragmpm ") + fragmpm::mpm::program_version() + " (" + fragmpm::mpm::program_git_hash() + ")");
+  app.set_version_flag("--version", std::string("fragmpm ") + fragmpm::mpm::program_version() +
+                                        " (" + fragmpm::mpm::program_git_hash() + ")");
   fragmpm::pipeline::CommandResult result;
   fragmpm::pipeline::add_run_command(app, result);
   fragmpm::pipeline::add_verify_command(app, result);

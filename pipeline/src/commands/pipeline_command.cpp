@@ -2,13 +2,16 @@
 // the scene is used as it is, except that IMAGE becomes the micrograph of every [[bodies]]
 // entry with an `image` key, so the scene keeps the segmentation options (pixel size, input kind,
 // crop, threshold) that fit its image. DIR receives
-//   segmentation.png            the segmentation preview of each image body (segmentation_N.png if several)
-//   run.h5, run.xmf             the run file and its XDMF companion
-//   fragments/                  analyze_run: fragment tables, CDF and count / size figures
-//   figures/                    damage, speed, stress, body and fragment figures of the last frame,
-//                               fragment figures of the analysed frames, energy and force–displacement
+//   segmentation.png            the segmentation preview of each image body (segmentation_N.png if
+//   several) run.h5, run.xmf             the run file and its XDMF companion fragments/
+//   analyze_run: fragment tables, CDF and count / size figures figures/                    damage,
+//   speed, stress, body and fragment figures of the last frame,
+//                               fragment figures of the analysed frames, energy and
+//                               force–displacement
 //   summary.txt                 grains, fragments, energy balance error, wall time
+#include <fmt/format.h>
 #include <omp.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <chrono>
@@ -17,9 +20,6 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
-#include <toml++/toml.h>
-
-#include <fmt/format.h>
 
 #include "fragmpm/analysis/figure_error.hpp"
 #include "fragmpm/analysis/frame_figure.hpp"
@@ -94,9 +94,10 @@ void check_output_dir(const fs::path& dir, bool overwrite) {
   if (!fs::is_directory(dir, ec))
     throw PipelineError(fmt::format("-o {}: exists and is not a directory", dir.string()));
   if (!fs::is_empty(dir, ec) && !overwrite)
-    throw PipelineError(fmt::format("-o {}: the directory exists and is not empty; pass --overwrite to write "
-                                    "into it (files of the same name are replaced)",
-                                    dir.string()));
+    throw PipelineError(
+        fmt::format("-o {}: the directory exists and is not empty; pass --overwrite to write "
+                    "into it (files of the same name are replaced)",
+                    dir.string()));
 }
 
 struct Preview {
@@ -105,7 +106,8 @@ struct Preview {
 };
 
 /// Segments the image of every image body with that body's options, as the scene compiler will.
-std::vector<Preview> segment_previews(const std::string& text, const std::string& scene_path, const std::string& image) {
+std::vector<Preview> segment_previews(const std::string& text, const std::string& scene_path,
+                                      const std::string& image) {
   const toml::table root = parse_toml(text, scene_path);
   std::vector<Preview> previews;
   const toml::array* bodies = root["bodies"].as_array();
@@ -126,8 +128,9 @@ std::vector<Preview> segment_previews(const std::string& text, const std::string
 }
 
 std::string field_title(const std::string& what, int frame, double time, double travel) {
-  return fmt::format("{} - frame {}, t = {}{}", what, frame, analysis::format_si(time, "s", 3),
-                     std::isfinite(travel) ? ", platen " + analysis::format_si(travel, "m", 3) : std::string());
+  return fmt::format(
+      "{} - frame {}, t = {}{}", what, frame, analysis::format_si(time, "s", 3),
+      std::isfinite(travel) ? ", platen " + analysis::format_si(travel, "m", 3) : std::string());
 }
 
 struct RunFacts {
@@ -141,27 +144,34 @@ struct RunFacts {
 };
 
 double input_energy(const mpm::SeriesRow<2>& row) {
-  return row.totals.initial_energy + std::abs(row.totals.wall_work) + std::abs(row.totals.gravity_work) +
-         std::abs(row.totals.load_work);
+  return row.totals.initial_energy + std::abs(row.totals.wall_work) +
+         std::abs(row.totals.gravity_work) + std::abs(row.totals.load_work);
 }
 
-std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& previews, const RunFacts& r,
-                         const AnalyzeResult* a, int threads, double setup_s, double analysis_s, double total_s) {
+std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& previews,
+                         const RunFacts& r, const AnalyzeResult* a, int threads, double setup_s,
+                         double analysis_s, double total_s) {
   std::ostringstream s;
   std::size_t grains = 0;
   for (const Preview& p : previews) grains += p.grains;
   s << "fragmpm pipeline summary\n";
   s << fmt::format("image:      {}\nscene:      {}\n", o.image, o.scene_path);
-  s << fmt::format("grains:     {} segmented, {} simulated (grains holding at least one particle), {} particles\n",
-                   grains, r.bodies, r.particles);
+  s << fmt::format(
+      "grains:     {} segmented, {} simulated (grains holding at least one particle), {} "
+      "particles\n",
+      grains, r.bodies, r.particles);
   s << fmt::format("run:        {} steps to t = {}, platen travel {}, {} frames{}\n", r.steps,
-                   analysis::format_si(r.end_time, "s", 4), analysis::format_si(r.travel, "m", 4), r.frames,
+                   analysis::format_si(r.end_time, "s", 4), analysis::format_si(r.travel, "m", 4),
+                   r.frames,
                    r.failed ? ", STOPPED BY A NUMERICAL FAILURE: " + r.failure : std::string());
   const auto& t = r.last.totals;
   const double input = input_energy(r.last);
-  s << fmt::format("energy:     input {:.4g} J/m (initial {:.4g} + wall work {:.4g}); kinetic {:.4g}, strain {:.4g}, "
-                   "damage dissipation {:.4g}, friction {:.4g} [J/m]\n",
-                   input, t.initial_energy, t.wall_work, r.last.kinetic, r.last.strain, t.dissipated, t.friction_work);
+  s << fmt::format(
+      "energy:     input {:.4g} J/m (initial {:.4g} + wall work {:.4g}); kinetic {:.4g}, strain "
+      "{:.4g}, "
+      "damage dissipation {:.4g}, friction {:.4g} [J/m]\n",
+      input, t.initial_energy, t.wall_work, r.last.kinetic, r.last.strain, t.dissipated,
+      t.friction_work);
   s << fmt::format("balance:    error {:.4g} J/m = {:.3g} % of input\n", r.last.balance_error,
                    input > 0 ? 100.0 * std::abs(r.last.balance_error) / input : 0.0);
   if (a) {
@@ -169,24 +179,31 @@ std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& p
     s << "  frame   time        platen      fragments  fines  mean d_eq   largest d_eq\n";
     for (const AnalyzedFrame& f : a->frames) {
       const auto& m = f.fragments.summary;
-      s << fmt::format("  {:<6}  {:<10}  {:<10}  {:<9}  {:<5}  {:<10} {}\n", f.frame, analysis::format_si(f.time, "s", 3),
-                       std::isfinite(f.platen_displacement) ? analysis::format_si(f.platen_displacement, "m", 3) : "-",
-                       m.fragments, m.fines, analysis::format_si(m.mean_equivalent_diameter, "m", 3),
-                       analysis::format_si(m.largest_equivalent_diameter, "m", 3));
+      s << fmt::format(
+          "  {:<6}  {:<10}  {:<10}  {:<9}  {:<5}  {:<10} {}\n", f.frame,
+          analysis::format_si(f.time, "s", 3),
+          std::isfinite(f.platen_displacement) ? analysis::format_si(f.platen_displacement, "m", 3)
+                                               : "-",
+          m.fragments, m.fines, analysis::format_si(m.mean_equivalent_diameter, "m", 3),
+          analysis::format_si(m.largest_equivalent_diameter, "m", 3));
     }
     if (!a->frames.empty())
       s << fmt::format("fragments:  {} resolved and {} fines at the last analysed frame\n",
-                       a->frames.back().fragments.summary.fragments, a->frames.back().fragments.summary.fines);
+                       a->frames.back().fragments.summary.fragments,
+                       a->frames.back().fragments.summary.fines);
   }
-  s << fmt::format("wall time:  {:.1f} s total (segmentation and setup {:.1f} s, run {:.1f} s, analysis and figures "
-                   "{:.1f} s), {} thread(s)\n",
-                   total_s, setup_s, r.run_seconds, analysis_s, threads);
+  s << fmt::format(
+      "wall time:  {:.1f} s total (segmentation and setup {:.1f} s, run {:.1f} s, analysis and "
+      "figures "
+      "{:.1f} s), {} thread(s)\n",
+      total_s, setup_s, r.run_seconds, analysis_s, threads);
   return s.str();
 }
 
 }  // namespace
 
-std::string scene_with_image(const std::string& text, const std::string& scene_path, const std::string& image_path) {
+std::string scene_with_image(const std::string& text, const std::string& scene_path,
+                             const std::string& image_path) {
   const toml::table root = parse_toml(text, scene_path);
   std::vector<std::pair<std::size_t, std::size_t>> ranges;  // byte ranges of the image values
   if (const toml::array* bodies = root["bodies"].as_array())
@@ -195,14 +212,17 @@ std::string scene_with_image(const std::string& text, const std::string& scene_p
         if (const toml::node* image = t->get("image")) {
           const toml::source_region& r = image->source();
           if (!image->is_string() || r.begin.line != r.end.line)
-            throw PipelineError(fmt::format("{}:{}: key 'image': expected a path (a string on one line)", scene_path,
-                                            r.begin.line));
-          ranges.emplace_back(offset_of(text, r.begin.line, r.begin.column), offset_of(text, r.end.line, r.end.column));
+            throw PipelineError(
+                fmt::format("{}:{}: key 'image': expected a path (a string on one line)",
+                            scene_path, r.begin.line));
+          ranges.emplace_back(offset_of(text, r.begin.line, r.begin.column),
+                              offset_of(text, r.end.line, r.end.column));
         }
   if (ranges.empty())
-    throw PipelineError(fmt::format("{}: expected a [[bodies]] entry with image = \"…\" (grains from a micrograph, "
-                                    "see scenes/demo/sandstone-crush.toml), got none; the pipeline puts IMAGE there",
-                                    scene_path));
+    throw PipelineError(fmt::format(
+        "{}: expected a [[bodies]] entry with image = \"…\" (grains from a micrograph, "
+        "see scenes/demo/sandstone-crush.toml), got none; the pipeline puts IMAGE there",
+        scene_path));
   std::string out = text;
   for (auto it = ranges.rbegin(); it != ranges.rend(); ++it)
     out.replace(it->first, it->second - it->first, toml_string(image_path));
@@ -215,7 +235,8 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
   check_output_dir(dir, o.overwrite);
   std::error_code ec;
   if (!fs::is_regular_file(o.image, ec))
-    throw PipelineError(fmt::format("{}: {}", o.image, fs::exists(o.image, ec) ? "not a regular file" : "no such file"));
+    throw PipelineError(fmt::format(
+        "{}: {}", o.image, fs::exists(o.image, ec) ? "not a regular file" : "no such file"));
   const std::string image = fs::absolute(o.image).lexically_normal().string();
   if (o.threads > 0) omp_set_num_threads(o.threads);
 
@@ -231,9 +252,12 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
 
   PipelineResult result;
   fs::create_directories(dir / "figures", ec);
-  if (ec) throw PipelineError(fmt::format("-o {}: cannot create the directory ({})", dir.string(), ec.message()));
+  if (ec)
+    throw PipelineError(
+        fmt::format("-o {}: cannot create the directory ({})", dir.string(), ec.message()));
   for (std::size_t k = 0; k < previews.size(); ++k) {
-    const fs::path path = dir / (previews.size() == 1 ? "segmentation.png" : fmt::format("segmentation_{}.png", k));
+    const fs::path path =
+        dir / (previews.size() == 1 ? "segmentation.png" : fmt::format("segmentation_{}.png", k));
     try {
       write_preview(previews[k].image, path.string());
     } catch (const SegmentInputError& e) {
@@ -255,9 +279,10 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
   meta.modules = mpm::plan_modules<2>(problem);
   for (const auto& w : problem.walls) meta.wall_names.push_back(w.name);
   const int threads = omp_get_max_threads();
-  say(log, fmt::format("fragmpm pipeline: {} particles in {} grains, {} walls, cell size {}, {} thread(s)",
-                       facts.particles, facts.bodies, problem.walls.size(),
-                       analysis::format_si(problem.grid.cell_size, "m", 3), threads));
+  say(log, fmt::format(
+               "fragmpm pipeline: {} particles in {} grains, {} walls, cell size {}, {} thread(s)",
+               facts.particles, facts.bodies, problem.walls.size(),
+               analysis::format_si(problem.grid.cell_size, "m", 3), threads));
   const double setup_s = seconds_since(start);
   {
     mpm::RunFile<2> file = mpm::RunFile<2>::create(result.run_path, meta, true);
@@ -270,16 +295,19 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
     facts.run_seconds = run.wall_seconds;
     facts.end_time = solver.time();
     facts.last = solver.last_row();
-    for (const auto& u : facts.last.wall_displacement) facts.travel = std::max(facts.travel, u.norm());
+    for (const auto& u : facts.last.wall_displacement)
+      facts.travel = std::max(facts.travel, u.norm());
     if (run.failed) {
       facts.failed = true;
-      facts.failure = fmt::format("step {}, t = {:.6g} s: {}", run.failure.step, run.failure.time, run.failure.what);
+      facts.failure = fmt::format("step {}, t = {:.6g} s: {}", run.failure.step, run.failure.time,
+                                  run.failure.what);
       result.exit_code = 3;
     }
   }
   result.files.push_back(result.run_path);
   result.files.push_back((dir / "run.xmf").string());
-  say(log, fmt::format("fragmpm pipeline: {} steps in {:.1f} s -> {}", facts.steps, facts.run_seconds, result.run_path));
+  say(log, fmt::format("fragmpm pipeline: {} steps in {:.1f} s -> {}", facts.steps,
+                       facts.run_seconds, result.run_path));
   const Clock::time_point analysis_start = Clock::now();
 
   // Fragments, tables, CDFs.
@@ -319,16 +347,19 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
     for (const auto& f : fields)
       figure(fmt::format("{}_last.png", f.name), [&](const std::string& path) {
         analysis::write_particle_figure(
-            analysis::frame_figure(particles, f.field, time, field_title(f.name, last, time, facts.travel)), path);
+            analysis::frame_figure(particles, f.field, time,
+                                   field_title(f.name, last, time, facts.travel)),
+            path);
       });
     if (analyzed)
       for (const AnalyzedFrame& f : analyzed->frames) {
         const mpm::Particles<2> current = f.frame == last ? particles : file.read_frame<2>(f.frame);
         figure(fmt::format("fragments_{:06d}.png", f.frame), [&](const std::string& path) {
           analysis::write_particle_figure(
-              analysis::fragment_figure(current, analysis::resolved_fragment_ids(f.fragments.labels), f.time,
-                                        field_title(fmt::format("{} fragments", f.fragments.summary.fragments), f.frame,
-                                                    f.time, f.platen_displacement)),
+              analysis::fragment_figure(
+                  current, analysis::resolved_fragment_ids(f.fragments.labels), f.time,
+                  field_title(fmt::format("{} fragments", f.fragments.summary.fragments), f.frame,
+                              f.time, f.platen_displacement)),
               path);
         });
       }
@@ -337,12 +368,14 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
       analysis::write_line_plot(analysis::energy_plot_spec(series), path);
     });
     figure("force_displacement.png", [&](const std::string& path) {
-      analysis::write_line_plot(analysis::force_displacement_spec(series, file.meta().wall_names), path);
+      analysis::write_line_plot(analysis::force_displacement_spec(series, file.meta().wall_names),
+                                path);
     });
   }
   const double analysis_s = seconds_since(analysis_start);
 
-  result.summary = summary_text(o, previews, facts, analyzed.get(), threads, setup_s, analysis_s, seconds_since(start));
+  result.summary = summary_text(o, previews, facts, analyzed.get(), threads, setup_s, analysis_s,
+                                seconds_since(start));
   result.summary_path = (dir / "summary.txt").string();
   std::ofstream out(result.summary_path);
   out << result.summary;
@@ -378,7 +411,8 @@ int execute(const PipelineArguments& a) {
     o.progress = !a.quiet;
     const PipelineResult r = run_pipeline(o, stderr);
     std::printf("%s", r.summary.c_str());
-    std::printf("written to %s: %zu files (summary: %s)\n", a.output.c_str(), r.files.size(), r.summary_path.c_str());
+    std::printf("written to %s: %zu files (summary: %s)\n", a.output.c_str(), r.files.size(),
+                r.summary_path.c_str());
     return r.exit_code;
   } catch (const PipelineError& e) {
     std::fprintf(stderr, "fragmpm pipeline: %s\n", e.what());
@@ -397,10 +431,12 @@ int execute(const PipelineArguments& a) {
 void add_pipeline_command(CLI::App& app, CommandResult& result) {
   auto args = std::make_shared<PipelineArguments>();
   CLI::App* cmd = app.add_subcommand(
-      "pipeline", "Micrograph → grains → crushing run → fragments, figures and summary.txt in one directory; "
-                  "IMAGE replaces the image of the scene's image bodies (their segmentation options stay)");
+      "pipeline",
+      "Micrograph → grains → crushing run → fragments, figures and summary.txt in one directory; "
+      "IMAGE replaces the image of the scene's image bodies (their segmentation options stay)");
   cmd->add_option("image", args->image, "Micrograph (any format OpenCV reads)")->required();
-  cmd->add_option("--scene", args->scene, "Scene file with a [[bodies]] entry image = \"…\"")->required();
+  cmd->add_option("--scene", args->scene, "Scene file with a [[bodies]] entry image = \"…\"")
+      ->required();
   cmd->add_option("-o,--output", args->output, "Output directory")->required();
   cmd->add_flag("--overwrite", args->overwrite, "Write into an existing non-empty directory");
   cmd->add_option("--threads", args->threads, "OpenMP threads (default: all cores)");

@@ -65,13 +65,15 @@ int execute(const RunArguments& args) {
       file.emplace(mpm::RunFile<2>::create(output, meta, args.overwrite));
     }
     const auto modules = mpm::plan_modules<2>(problem);
-    std::fprintf(stderr, "fragmpm: %zu particles, %zu bodies, %zu walls, cell size %.4g m, %d thread(s)\n",
+    std::fprintf(stderr,
+                 "fragmpm: %zu particles, %zu bodies, %zu walls, cell size %.4g m, %d thread(s)\n",
                  problem.particles.size(), problem.body_names.size(), problem.walls.size(),
                  problem.grid.cell_size, omp_get_max_threads());
     log_modules(modules);
     mpm::Solver<2> solver(std::move(problem));
-    if (checkpoint) solver.restore(checkpoint->time, checkpoint->step, checkpoint->totals,
-                                   std::move(checkpoint->particles));
+    if (checkpoint)
+      solver.restore(checkpoint->time, checkpoint->step, checkpoint->totals,
+                     std::move(checkpoint->particles));
     RunLoopOptions options;
     options.write_initial_frame = !checkpoint.has_value();
     options.progress = !args.quiet;
@@ -86,23 +88,23 @@ int execute(const RunArguments& args) {
                    file->path().c_str());
       return 3;
     }
-    const double scale = std::max(row.totals.initial_energy + std::abs(row.totals.wall_work) +
-                                      std::abs(row.totals.gravity_work) +
-                                      std::abs(row.totals.load_work),
-                                  1e-300);
-    std::fprintf(stderr,
-                 "fragmpm: done, %lld steps to t = %.6g s in %.2f s (%.3g particle-steps/s), %d frames "
-                 "-> %s\n  energy [J/m]: kinetic %.6g, strain %.6g, wall work %.6g, gravity work %.6g, "
-                 "load work %.6g, damage dissipation %.6g, friction %.6g, balance error %.3g "
-                 "(%.2g %% of input)\n",
-                 result.steps, solver.time(), result.wall_seconds,
-                 result.wall_seconds > 0 ? double(result.steps) * double(solver.particles().size()) /
-                                               result.wall_seconds
-                                         : 0.0,
-                 result.frames, file->path().c_str(), row.kinetic, row.strain, row.totals.wall_work,
-                 row.totals.gravity_work, row.totals.load_work, row.totals.dissipated,
-                 row.totals.friction_work,
-                 row.balance_error, 100.0 * std::abs(row.balance_error) / scale);
+    const double scale =
+        std::max(row.totals.initial_energy + std::abs(row.totals.wall_work) +
+                     std::abs(row.totals.gravity_work) + std::abs(row.totals.load_work),
+                 1e-300);
+    std::fprintf(
+        stderr,
+        "fragmpm: done, %lld steps to t = %.6g s in %.2f s (%.3g particle-steps/s), %d frames "
+        "-> %s\n  energy [J/m]: kinetic %.6g, strain %.6g, wall work %.6g, gravity work %.6g, "
+        "load work %.6g, damage dissipation %.6g, friction %.6g, balance error %.3g "
+        "(%.2g %% of input)\n",
+        result.steps, solver.time(), result.wall_seconds,
+        result.wall_seconds > 0
+            ? double(result.steps) * double(solver.particles().size()) / result.wall_seconds
+            : 0.0,
+        result.frames, file->path().c_str(), row.kinetic, row.strain, row.totals.wall_work,
+        row.totals.gravity_work, row.totals.load_work, row.totals.dissipated,
+        row.totals.friction_work, row.balance_error, 100.0 * std::abs(row.balance_error) / scale);
     return 0;
   } catch (const SceneError& e) {
     std::fprintf(stderr, "fragmpm run: %s\n", e.what());
@@ -117,12 +119,14 @@ int execute(const RunArguments& args) {
 
 void add_run_command(CLI::App& app, CommandResult& result) {
   auto args = std::make_shared<RunArguments>();
-  CLI::App* run = app.add_subcommand("run", "Simulate a scene file and write a run file (HDF5 + XDMF)");
+  CLI::App* run =
+      app.add_subcommand("run", "Simulate a scene file and write a run file (HDF5 + XDMF)");
   run->add_option("scene", args->scene, "Scene file (TOML, see scenes/README.md)");
   run->add_option("-o,--output", args->output, "Run file to write (default: SCENE stem + .h5)");
   run->add_option("--restart", args->restart, "Continue RUN.h5 from its last checkpoint");
   run->add_option("--threads", args->threads, "OpenMP threads (default: all cores)");
-  run->add_option("--max-steps", args->max_steps, "Stop after this many steps (the run can be continued with --restart)");
+  run->add_option("--max-steps", args->max_steps,
+                  "Stop after this many steps (the run can be continued with --restart)");
   run->add_flag("--overwrite", args->overwrite, "Replace an existing run file");
   run->add_flag("-q,--quiet", args->quiet, "No progress line");
   run->callback([args, &result] { result.exit_code = execute(*args); });

@@ -44,7 +44,8 @@ class ProgressLine {
 
 }  // namespace
 
-RunLoopResult run_loop(mpm::Solver<2>& solver, mpm::RunFile<2>& file, const RunLoopOptions& options) {
+RunLoopResult run_loop(mpm::Solver<2>& solver, mpm::RunFile<2>& file,
+                       const RunLoopOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   const auto& problem = solver.problem();
   const auto& stop = problem.stop;

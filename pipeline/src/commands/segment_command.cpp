@@ -1,5 +1,8 @@
 // `fragmpm segment IMAGE --pixel-size 1um [options] -o grains.h5 [--preview preview.png]`
 // (docs/design.md): micrograph → grains → particles → grain file and preview.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,9 +11,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/pipeline/commands.hpp"
@@ -73,11 +73,13 @@ cv::Rect parse_crop(const std::string& text) {
       used = 0;
     }
     if (used == 0 || used != item.size())
-      throw SegmentInputError(fmt::format("--crop '{}': '{}' is not an integer; expected x,y,w,h in pixels", text, item));
+      throw SegmentInputError(fmt::format(
+          "--crop '{}': '{}' is not an integer; expected x,y,w,h in pixels", text, item));
     v.push_back(value);
   }
   if (v.size() != 4)
-    throw SegmentInputError(fmt::format("--crop '{}': expected four integers x,y,w,h in pixels", text));
+    throw SegmentInputError(
+        fmt::format("--crop '{}': expected four integers x,y,w,h in pixels", text));
   return cv::Rect(v[0], v[1], v[2], v[3]);
 }
 
@@ -90,7 +92,9 @@ SegmentOptions to_options(const SegmentArguments& a) {
     throw SegmentInputError(fmt::format("--pixel-size '{}': {}", a.pixel_size, e.what()));
   }
   if (!a.crop.empty()) o.crop = parse_crop(a.crop);
-  o.input = a.input == "classes" ? InputKind::classes : a.input == "labels" ? InputKind::labels : InputKind::grey;
+  o.input = a.input == "classes"  ? InputKind::classes
+            : a.input == "labels" ? InputKind::labels
+                                  : InputKind::grey;
   o.preprocess.invert = a.invert;
   o.preprocess.denoise = a.denoise == "median"      ? DenoiseMethod::median
                          : a.denoise == "gaussian"  ? DenoiseMethod::gaussian
@@ -106,11 +110,14 @@ SegmentOptions to_options(const SegmentArguments& a) {
                                                    : ThresholdMethod::otsu;
   if (a.level) {
     if (a.threshold != "fixed" && a.threshold != "otsu")
-      throw SegmentInputError(fmt::format("--level is the fixed threshold; it cannot be combined with --threshold {}", a.threshold));
+      throw SegmentInputError(
+          fmt::format("--level is the fixed threshold; it cannot be combined with --threshold {}",
+                      a.threshold));
     o.threshold.method = ThresholdMethod::fixed;
     o.threshold.level = *a.level;
   } else if (a.threshold == "fixed") {
-    throw SegmentInputError("--threshold fixed needs --level (a grey level in the image's own units)");
+    throw SegmentInputError(
+        "--threshold fixed needs --level (a grey level in the image's own units)");
   }
   o.threshold.adaptive_block = a.block;
   o.threshold.adaptive_offset = a.offset;
@@ -132,17 +139,20 @@ SegmentOptions to_options(const SegmentArguments& a) {
 
 std::string options_text(const SegmentArguments& a) {
   std::string t = fmt::format(
-      "pixel_size = {}\ncrop = {}\ninput = {}\ninvert = {}\ndenoise = {} (radius {})\ngaps = {}\nequalize = {}\n"
+      "pixel_size = {}\ncrop = {}\ninput = {}\ninvert = {}\ndenoise = {} (radius {})\ngaps = "
+      "{}\nequalize = {}\n"
       "threshold = {}{}\nadaptive_block = {}\nadaptive_offset = {}\nopen = {}\nclose = {}\n"
       "max_hole_area = {}\nfill_holes = {}\nsplit = {}\nmarker_spacing = {}\nneck_ratio = {}\n"
-      "grain_classes = {}\nboundary_classes = {}\nboundary_to = {}\nmin_area = {}\ndrop_border = {}\n"
+      "grain_classes = {}\nboundary_classes = {}\nboundary_to = {}\nmin_area = {}\ndrop_border = "
+      "{}\n"
       "grow = {}\nphase_bands = {}\ncell_size = {}\nparticles_per_cell = {}\ndensities = {}\n",
-      a.pixel_size, a.crop.empty() ? "none" : a.crop, a.input, a.invert, a.denoise, a.denoise_radius,
-      a.gaps, a.equalize, a.threshold, a.level ? fmt::format(" (level {})", *a.level) : "", a.block, a.offset,
-      a.open, a.close, a.max_hole_area, !a.no_fill_holes, !a.no_split, a.marker_spacing, a.neck_ratio,
-      fmt::join(a.grain_classes, ","), fmt::join(a.boundary_classes, ","), a.boundary_to, a.min_area,
-      a.drop_border, a.grow, fmt::join(a.phase_bands, ","), a.cell_size, a.particles_per_cell,
-      fmt::join(a.densities, ","));
+      a.pixel_size, a.crop.empty() ? "none" : a.crop, a.input, a.invert, a.denoise,
+      a.denoise_radius, a.gaps, a.equalize, a.threshold,
+      a.level ? fmt::format(" (level {})", *a.level) : "", a.block, a.offset, a.open, a.close,
+      a.max_hole_area, !a.no_fill_holes, !a.no_split, a.marker_spacing, a.neck_ratio,
+      fmt::join(a.grain_classes, ","), fmt::join(a.boundary_classes, ","), a.boundary_to,
+      a.min_area, a.drop_border, a.grow, fmt::join(a.phase_bands, ","), a.cell_size,
+      a.particles_per_cell, fmt::join(a.densities, ","));
   return t;
 }
 
@@ -152,7 +162,8 @@ int execute(const SegmentArguments& a) {
     // Everything the user typed is checked before the (possibly long) segmentation starts.
     validate_segment_options(options);
     if (a.particles_per_cell < 1)
-      throw SegmentInputError(fmt::format("--particles-per-cell must be ≥ 1, got {}", a.particles_per_cell));
+      throw SegmentInputError(
+          fmt::format("--particles-per-cell must be ≥ 1, got {}", a.particles_per_cell));
     std::optional<double> cell_size;
     if (a.cell_size != "auto") {
       try {
@@ -161,7 +172,8 @@ int execute(const SegmentArguments& a) {
         throw SegmentInputError(fmt::format("--cell-size '{}': {}", a.cell_size, e.what()));
       }
       if (!(*cell_size > 0.0))
-        throw SegmentInputError(fmt::format("--cell-size must be a positive length, got '{}'", a.cell_size));
+        throw SegmentInputError(
+            fmt::format("--cell-size must be a positive length, got '{}'", a.cell_size));
     }
     std::vector<double> density;
     for (const std::string& d : a.densities) {
@@ -176,18 +188,19 @@ int execute(const SegmentArguments& a) {
     const std::size_t phases = options.phase_bands.size() + 1;
     if (density.size() == 1) density.resize(phases, density.front());
     if (density.size() != phases)
-      throw SegmentInputError(fmt::format(
-          "--density: {} value(s) given for {} phase(s) (--phase-bands gives {} band limit(s)); give one "
-          "density, or one per phase",
-          a.densities.size(), phases, options.phase_bands.size()));
+      throw SegmentInputError(
+          fmt::format("--density: {} value(s) given for {} phase(s) (--phase-bands gives {} band "
+                      "limit(s)); give one "
+                      "density, or one per phase",
+                      a.densities.size(), phases, options.phase_bands.size()));
 
     const Segmentation s = segment(options);
 
     ParticleSampling sampling;
     sampling.particles_per_cell = a.particles_per_cell;
     sampling.cell_size = cell_size ? *cell_size : auto_cell_size(s.table, s.pixel_size);
-    const mpm::Particles<2> particles =
-        particles_from_labels(s.table.labels, s.pixel_size, sampling, material_of_labels(s.table), density);
+    const mpm::Particles<2> particles = particles_from_labels(
+        s.table.labels, s.pixel_size, sampling, material_of_labels(s.table), density);
 
     GrainFileExtras extras{sampling, density, options_text(a)};
     write_grain_file(a.output, s, particles, extras, a.overwrite);
@@ -198,19 +211,24 @@ int execute(const SegmentArguments& a) {
     std::sort(d.begin(), d.end());
     std::size_t surface = 0;
     for (const auto flag : particles.surface) surface += flag;
-    std::fprintf(stderr,
-                 "fragmpm segment: %s (%d x %d px, window %d,%d,%d,%d)\n"
-                 "  %zu grains (dropped %lld under %lld px%s), median equivalent diameter %.4g um%s\n"
-                 "  %zu particles (%zu on surfaces), cell size %.4g um%s, %d per cell per direction -> %s\n",
-                 s.input.path.c_str(), s.input.full_size.width, s.input.full_size.height,
-                 s.input.window.x, s.input.window.y, s.input.window.width, s.input.window.height,
-                 s.table.grains.size(), static_cast<long long>(s.table.dropped_small), a.min_area,
-                 a.drop_border ? fmt::format(", {} at the border", s.table.dropped_border).c_str() : "",
-                 1e6 * d[d.size() / 2],
-                 std::isnan(s.threshold_level) ? ""
-                 : fmt::format(", threshold at {} level {:.5g}", a.gaps > 0 ? "gap-image" : "grey", s.threshold_level).c_str(),
-                 particles.size(), surface, 1e6 * sampling.cell_size, cell_size ? "" : " (auto: median grain / 8)",
-                 sampling.particles_per_cell, a.output.c_str());
+    std::fprintf(
+        stderr,
+        "fragmpm segment: %s (%d x %d px, window %d,%d,%d,%d)\n"
+        "  %zu grains (dropped %lld under %lld px%s), median equivalent diameter %.4g um%s\n"
+        "  %zu particles (%zu on surfaces), cell size %.4g um%s, %d per cell per direction -> %s\n",
+        s.input.path.c_str(), s.input.full_size.width, s.input.full_size.height, s.input.window.x,
+        s.input.window.y, s.input.window.width, s.input.window.height, s.table.grains.size(),
+        static_cast<long long>(s.table.dropped_small), a.min_area,
+        a.drop_border ? fmt::format(", {} at the border", s.table.dropped_border).c_str() : "",
+        1e6 * d[d.size() / 2],
+        std::isnan(s.threshold_level)
+            ? ""
+            : fmt::format(", threshold at {} level {:.5g}", a.gaps > 0 ? "gap-image" : "grey",
+                          s.threshold_level)
+                  .c_str(),
+        particles.size(), surface, 1e6 * sampling.cell_size,
+        cell_size ? "" : " (auto: median grain / 8)", sampling.particles_per_cell,
+        a.output.c_str());
     if (!a.preview.empty()) std::fprintf(stderr, "  preview -> %s\n", a.preview.c_str());
     return 0;
   } catch (const SegmentInputError& e) {
@@ -227,49 +245,82 @@ int execute(const SegmentArguments& a) {
 void add_segment_command(CLI::App& app, CommandResult& result) {
   auto a = std::make_shared<SegmentArguments>();
   CLI::App* c = app.add_subcommand(
-      "segment", "Segment a micrograph into grains; write a grain file (labels, grain table, particles)");
-  c->add_option("image", a->image, "Micrograph (PNG, TIFF 8/16-bit, BMP, JPEG), class mask or label image")->required();
-  c->add_option("--pixel-size", a->pixel_size, "Pixel size with unit, e.g. 1um or \"0.5 mm\"")->required();
+      "segment",
+      "Segment a micrograph into grains; write a grain file (labels, grain table, particles)");
+  c->add_option("image", a->image,
+                "Micrograph (PNG, TIFF 8/16-bit, BMP, JPEG), class mask or label image")
+      ->required();
+  c->add_option("--pixel-size", a->pixel_size, "Pixel size with unit, e.g. 1um or \"0.5 mm\"")
+      ->required();
   c->add_option("-o,--output", a->output, "Grain file to write (HDF5)")->required();
   c->add_option("--preview", a->preview, "PNG with grain outlines and labels drawn over the image");
   c->add_option("--crop", a->crop, "Window x,y,w,h in pixels");
-  c->add_option("--input", a->input, "grey (micrograph), classes (class mask) or labels (label image)")
-      ->check(CLI::IsMember({"grey", "classes", "labels"}))->capture_default_str();
+  c->add_option("--input", a->input,
+                "grey (micrograph), classes (class mask) or labels (label image)")
+      ->check(CLI::IsMember({"grey", "classes", "labels"}))
+      ->capture_default_str();
   c->add_flag("--invert", a->invert, "Grains are darker than the background");
   c->add_option("--denoise", a->denoise, "none, median, gaussian or bilateral")
-      ->check(CLI::IsMember({"none", "median", "gaussian", "bilateral"}))->capture_default_str();
-  c->add_option("--denoise-radius", a->denoise_radius, "Denoising window half-width [px]")->capture_default_str();
+      ->check(CLI::IsMember({"none", "median", "gaussian", "bilateral"}))
+      ->capture_default_str();
+  c->add_option("--denoise-radius", a->denoise_radius, "Denoising window half-width [px]")
+      ->capture_default_str();
   c->add_flag("--equalize", a->equalize, "CLAHE contrast equalisation");
   c->add_option("--gaps", a->gaps,
-                "Packed grains of any brightness: dark gaps narrower than about 2x this radius [px] become background (black top-hat); 0 = off")
+                "Packed grains of any brightness: dark gaps narrower than about 2x this radius "
+                "[px] become background (black top-hat); 0 = off")
       ->capture_default_str();
-  c->add_option("--grow", a->grow, "After splitting, grains grow into the background by up to this many pixels, never merging; 0 = off")
+  c->add_option("--grow", a->grow,
+                "After splitting, grains grow into the background by up to this many pixels, never "
+                "merging; 0 = off")
       ->capture_default_str();
   c->add_option("--threshold", a->threshold, "otsu, triangle, adaptive or fixed")
-      ->check(CLI::IsMember({"otsu", "triangle", "adaptive", "fixed"}))->capture_default_str();
-  c->add_option("--level", a->level, "Fixed threshold in the image's grey units (implies --threshold fixed)");
+      ->check(CLI::IsMember({"otsu", "triangle", "adaptive", "fixed"}))
+      ->capture_default_str();
+  c->add_option("--level", a->level,
+                "Fixed threshold in the image's grey units (implies --threshold fixed)");
   c->add_option("--block", a->block, "Adaptive threshold window [px, odd]")->capture_default_str();
-  c->add_option("--offset", a->offset, "Adaptive threshold: grain pixels exceed the local mean minus this")->capture_default_str();
+  c->add_option("--offset", a->offset,
+                "Adaptive threshold: grain pixels exceed the local mean minus this")
+      ->capture_default_str();
   c->add_option("--open", a->open, "Opening radius [px] (removes specks)")->capture_default_str();
   c->add_option("--close", a->close, "Closing radius [px] (fills cracks)")->capture_default_str();
-  c->add_option("--max-hole-area", a->max_hole_area, "Fill enclosed holes up to this area before splitting [px]")->capture_default_str();
+  c->add_option("--max-hole-area", a->max_hole_area,
+                "Fill enclosed holes up to this area before splitting [px]")
+      ->capture_default_str();
   c->add_flag("--no-fill-holes", a->no_fill_holes, "Keep background enclosed by a single grain");
   c->add_flag("--no-split", a->no_split, "Do not split touching grains");
-  c->add_option("--marker-spacing", a->marker_spacing, "Watershed marker radius [px]")->capture_default_str();
-  c->add_option("--neck-ratio", a->neck_ratio, "Split where the neck is narrower than this fraction of the smaller grain's inscribed radius")
+  c->add_option("--marker-spacing", a->marker_spacing, "Watershed marker radius [px]")
       ->capture_default_str();
-  c->add_option("--grain-class", a->grain_classes, "Class mask values that are grain")->delimiter(',')->capture_default_str();
-  c->add_option("--boundary-class", a->boundary_classes, "Class mask values that are grain boundaries")->delimiter(',')->capture_default_str();
-  c->add_option("--boundary-to", a->boundary_to, "Boundary pixels join the nearest grain, or the background")
-      ->check(CLI::IsMember({"grains", "background"}))->capture_default_str();
+  c->add_option("--neck-ratio", a->neck_ratio,
+                "Split where the neck is narrower than this fraction of the smaller grain's "
+                "inscribed radius")
+      ->capture_default_str();
+  c->add_option("--grain-class", a->grain_classes, "Class mask values that are grain")
+      ->delimiter(',')
+      ->capture_default_str();
+  c->add_option("--boundary-class", a->boundary_classes,
+                "Class mask values that are grain boundaries")
+      ->delimiter(',')
+      ->capture_default_str();
+  c->add_option("--boundary-to", a->boundary_to,
+                "Boundary pixels join the nearest grain, or the background")
+      ->check(CLI::IsMember({"grains", "background"}))
+      ->capture_default_str();
   c->add_option("--min-area", a->min_area, "Drop grains with fewer pixels")->capture_default_str();
   c->add_flag("--drop-border", a->drop_border, "Drop grains cut by the image (window) border");
-  c->add_option("--phase-bands", a->phase_bands, "Grey-level limits between phases (material ids), ascending")->delimiter(',');
-  c->add_option("--cell-size", a->cell_size, "Grid cell size h for the particles, e.g. 10um (auto: median grain / 8)")
+  c->add_option("--phase-bands", a->phase_bands,
+                "Grey-level limits between phases (material ids), ascending")
+      ->delimiter(',');
+  c->add_option("--cell-size", a->cell_size,
+                "Grid cell size h for the particles, e.g. 10um (auto: median grain / 8)")
       ->capture_default_str();
-  c->add_option("--particles-per-cell", a->particles_per_cell, "Particles per cell per direction")->capture_default_str();
-  c->add_option("--density", a->densities, "Density per phase, e.g. \"2650 kg/m3\" (one value = all phases)")
-      ->delimiter(',')->capture_default_str();
+  c->add_option("--particles-per-cell", a->particles_per_cell, "Particles per cell per direction")
+      ->capture_default_str();
+  c->add_option("--density", a->densities,
+                "Density per phase, e.g. \"2650 kg/m3\" (one value = all phases)")
+      ->delimiter(',')
+      ->capture_default_str();
   c->add_flag("--overwrite", a->overwrite, "Replace an existing grain file");
   c->callback([a, &result] { result.exit_code = execute(*a); });
 }

@@ -19,15 +19,22 @@ const std::vector<VerifyCase>& verify_cases() {
       {"notched-bar", "V6 notched bar struck by a disk: damage dissipation vs G_f x crack",
        verify_notched_bar},
       {"kalthoff", "P1 Kalthoff-Winkler plate: crack angle and crack speed", verify_kalthoff},
-      {"conduction", "V4 one-dimensional heat conduction from a temperature step vs erfc", verify_conduction},
-      {"contact-temperature", "V3 pressed aluminium blocks: steady contact-face temperatures, three pressures",
+      {"conduction", "V4 one-dimensional heat conduction from a temperature step vs erfc",
+       verify_conduction},
+      {"contact-temperature",
+       "V3 pressed aluminium blocks: steady contact-face temperatures, three pressures",
        verify_contact_temperature},
-      {"sliding-block", "V2 sliding block, four friction laws: end-of-slide velocity and friction work vs the rigid block",
+      {"sliding-block",
+       "V2 sliding block, four friction laws: end-of-slide velocity and friction work vs the rigid "
+       "block",
        verify_sliding_block},
-      {"oscillating-block", "V7 oscillating block: friction work of one stick-slide-stick cycle over CFL factors, "
-                            "first- and second-order heating",
+      {"oscillating-block",
+       "V7 oscillating block: friction work of one stick-slide-stick cycle over CFL factors, "
+       "first- and second-order heating",
        verify_oscillating_block},
-      {"disk-squish", "P3 disk squish: peak contact temperature and disk speed, isothermal / coupled / softening friction",
+      {"disk-squish",
+       "P3 disk squish: peak contact temperature and disk speed, isothermal / coupled / softening "
+       "friction",
        verify_disk_squish},
   };
   return cases;
@@ -50,14 +57,16 @@ int execute(const VerifyArguments& args) {
   options.quick = args.quick;
   options.threads = args.threads;
   if (args.list) {
-    for (const auto& c : verify_cases()) std::printf("%-16s %s\n", c.name.c_str(), c.description.c_str());
+    for (const auto& c : verify_cases())
+      std::printf("%-16s %s\n", c.name.c_str(), c.description.c_str());
     return 0;
   }
   if (args.stability) {
     const auto results = run_stability(options);
     bool all = true;
     for (const auto& r : results) {
-      std::printf("\n%-24s %s  (%.2f s)\n", r.scene.c_str(), r.passed ? "PASS" : "FAIL", r.wall_seconds);
+      std::printf("\n%-24s %s  (%.2f s)\n", r.scene.c_str(), r.passed ? "PASS" : "FAIL",
+                  r.wall_seconds);
       for (const auto& check : r.checks) std::printf("    %s\n", check.c_str());
       all = all && r.passed;
     }
@@ -105,8 +114,9 @@ int execute(const VerifyArguments& args) {
 
 void add_verify_command(CLI::App& app, CommandResult& result) {
   auto args = std::make_shared<VerifyArguments>();
-  CLI::App* verify = app.add_subcommand(
-      "verify", "Run verification cases at successive resolutions (writes DIR/CASE.csv) or the stability scenes");
+  CLI::App* verify = app.add_subcommand("verify",
+                                        "Run verification cases at successive resolutions (writes "
+                                        "DIR/CASE.csv) or the stability scenes");
   verify->add_option("cases", args->cases, "Cases to run (default: all; --list shows them)");
   verify->add_option("-o,--output", args->output, "Directory for CSV files (default verify-out)");
   verify->add_flag("--quick", args->quick, "Fewer, coarser levels (for CI)");

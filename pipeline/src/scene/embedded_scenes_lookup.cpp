@@ -1,7 +1,8 @@
+#include <toml++/toml.h>
+
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
-#include <toml++/toml.h>
 
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 

@@ -27,17 +27,20 @@ double youngs_modulus(const mpm::MaterialSpec& m) {
   return 9.0 * m.bulk_modulus * m.shear_modulus / (3.0 * m.bulk_modulus + m.shear_modulus);
 }
 
-/// The weibull table; σ̄_f is its reference_strength or, when that is left out, the material's strength.
-mpm::WeibullStrength read_weibull(const Section& w, std::optional<double> thickness, const Section& material,
-                                  std::optional<double> strength) {
+/// The weibull table; σ̄_f is its reference_strength or, when that is left out, the material's
+/// strength.
+mpm::WeibullStrength read_weibull(const Section& w, std::optional<double> thickness,
+                                  const Section& material, std::optional<double> strength) {
   w.allow_only({"reference_strength", "reference_volume", "modulus", "seed"});
   mpm::WeibullStrength out;
   if (!strength || w.has("reference_strength")) {
     out.reference_strength = w.quantity("reference_strength", QK::pressure);
-    if (!(out.reference_strength > 0.0)) w.expected("reference_strength", "a positive strength σ̄_f");
+    if (!(out.reference_strength > 0.0))
+      w.expected("reference_strength", "a positive strength σ̄_f");
     if (strength && out.reference_strength != *strength)
       w.fail("reference_strength", "expected the material's strength = " + si(*strength, "Pa") +
-                                       " (both give σ̄_f of [HH17] eq. (25); leave one out), got " + si(out.reference_strength, "Pa"));
+                                       " (both give σ̄_f of [HH17] eq. (25); leave one out), got " +
+                                       si(out.reference_strength, "Pa"));
   } else {
     out.reference_strength = *strength;
   }
@@ -49,8 +52,10 @@ mpm::WeibullStrength read_weibull(const Section& w, std::optional<double> thickn
   if (seed < 0) w.expected("seed", "an integer seed >= 0");
   out.seed = static_cast<unsigned long long>(seed);
   if (!thickness)
-    material.fail("weibull", "missing [physics] thickness: expected the out-of-plane thickness (a length) that "
-                             "turns particle areas into the volumes of [HH17] eq. (25) in a 2D scene");
+    material.fail(
+        "weibull",
+        "missing [physics] thickness: expected the out-of-plane thickness (a length) that "
+        "turns particle areas into the volumes of [HH17] eq. (25) in a 2D scene");
   out.thickness = *thickness;
   return out;
 }
@@ -63,39 +68,44 @@ std::string plain(double v) {
 
 /// The snap-back check of 000 eq. (20-21) for one strength: H̄ l_ch < 1 with l_ch the particle
 /// size (the solver's characteristic length; see rankine_softening_modulus).
-void check_softening(const Section& m, const mpm::MaterialSpec& spec, const mpm::RankineSoftening& law,
-                     double strength, const std::string& which_strength, const mpm::GridSpec<2>& grid,
+void check_softening(const Section& m, const mpm::MaterialSpec& spec,
+                     const mpm::RankineSoftening& law, double strength,
+                     const std::string& which_strength, const mpm::GridSpec<2>& grid,
                      double particle_spacing, double l_ch) {
   if (std::isfinite(mpm::rankine_softening_modulus(strength, law, l_ch))) return;
-  const double hbar_l = strength * strength * l_ch / (2.0 * law.youngs_modulus * law.fracture_energy);
-  // Particles per cell stay fixed, so the cell size scales with the particle size (and with l_ch when
-  // l_ch is the particle size; a given l_ch has to be reduced itself).
+  const double hbar_l =
+      strength * strength * l_ch / (2.0 * law.youngs_modulus * law.fracture_energy);
+  // Particles per cell stay fixed, so the cell size scales with the particle size (and with l_ch
+  // when l_ch is the particle size; a given l_ch has to be reduced itself).
   const double h_max =
       mpm::rankine_largest_characteristic_length(strength, law) * grid.cell_size / particle_spacing;
   if (l_ch != particle_spacing)
-    m.fail("characteristic_length",
-           "expected a characteristic length below " + si(mpm::rankine_largest_characteristic_length(strength, law), "m") +
-               " for material '" + spec.name + "' (snap-back: H̄ l_ch = " +
-               plain(strength * strength * l_ch / (2.0 * law.youngs_modulus * law.fracture_energy)) +
-               " >= 1, [XLS21] eq. (20)-(21)), got " + si(l_ch, "m"));
+    m.fail(
+        "characteristic_length",
+        "expected a characteristic length below " +
+            si(mpm::rankine_largest_characteristic_length(strength, law), "m") + " for material '" +
+            spec.name + "' (snap-back: H̄ l_ch = " +
+            plain(strength * strength * l_ch / (2.0 * law.youngs_modulus * law.fracture_energy)) +
+            " >= 1, [XLS21] eq. (20)-(21)), got " + si(l_ch, "m"));
   const double gf_min = strength * strength * l_ch / (2.0 * law.youngs_modulus);
   m.fail("fracture_energy",
          "expected a cell fine enough for the softening of material '" + spec.name +
              "': cell too coarse for this material (snap-back), H̄ l_ch = σ_f² l_ch / (2 E G_f) = " +
-             plain(hbar_l) + " >= 1 with σ_f = " + si(strength, "Pa") + " (" +
-             which_strength + "), E = " + si(law.youngs_modulus, "Pa") + ", G_f = " +
-             si(law.fracture_energy, "J/m2") + " and l_ch = particle size " + si(l_ch, "m") +
-             " (grid.cell_size = " + si(grid.cell_size, "m") + "); the largest admissible cell size is " +
-             si(h_max, "m") + " (strictly below), or a fracture energy above " + si(gf_min, "J/m2") +
+             plain(hbar_l) + " >= 1 with σ_f = " + si(strength, "Pa") + " (" + which_strength +
+             "), E = " + si(law.youngs_modulus, "Pa") +
+             ", G_f = " + si(law.fracture_energy, "J/m2") + " and l_ch = particle size " +
+             si(l_ch, "m") + " (grid.cell_size = " + si(grid.cell_size, "m") +
+             "); the largest admissible cell size is " + si(h_max, "m") +
+             " (strictly below), or a fracture energy above " + si(gf_min, "J/m2") +
              " at this cell size ([XLS21] eq. (20)-(21))");
 }
 
 }  // namespace
 
 const std::vector<std::string_view>& damage_keys() {
-  static const std::vector<std::string_view> keys = {"damage",      "strength",    "fracture_energy",
-                                                     "crack_speed", "degradation", "weibull",
-                                                     "characteristic_length"};
+  static const std::vector<std::string_view> keys = {
+      "damage",      "strength", "fracture_energy",      "crack_speed",
+      "degradation", "weibull",  "characteristic_length"};
   return keys;
 }
 
@@ -105,8 +115,9 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
   if (law == "none") {
     for (std::string_view k : damage_keys())
       if (k != "damage" && m.has(k))
-        m.fail(k, "expected " + std::string(k) + " only with a damage law (damage = \"rankine\" or \"time-to-failure\"), "
-                  "got it with damage = \"none\"");
+        m.fail(k, "expected " + std::string(k) +
+                      " only with a damage law (damage = \"rankine\" or \"time-to-failure\"), "
+                      "got it with damage = \"none\"");
     spec.damage = mpm::NoDamage{};
     return;
   }
@@ -115,8 +126,11 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
 
   // Strength: uniform σ_f, or a Weibull field ([HH17] eq. (25)) whose σ̄_f may come from `strength`.
   if (!m.has("strength") && !m.has("weibull"))
-    m.fail("strength", "missing required key: expected strength (a pressure, e.g. \"50 MPa\") or a weibull table "
-                       "for damage = \"" + law + "\"");
+    m.fail(
+        "strength",
+        "missing required key: expected strength (a pressure, e.g. \"50 MPa\") or a weibull table "
+        "for damage = \"" +
+            law + "\"");
   std::optional<double> strength;
   if (m.has("strength")) {
     strength = m.quantity("strength", QK::pressure);
@@ -134,16 +148,24 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     if (!(spec.characteristic_length > 0.0))
       m.expected("characteristic_length", "a positive length l_ch (default: the particle size)");
   }
-  const double band_width = spec.characteristic_length > 0.0 ? spec.characteristic_length : particle_spacing;
+  const double band_width =
+      spec.characteristic_length > 0.0 ? spec.characteristic_length : particle_spacing;
 
   const std::string degradation = m.optional_string("degradation").value_or("tensile");
-  if (degradation == "tensile") spec.degradation = mpm::Degradation::tensile_spectral;
-  else if (degradation == "isotropic") spec.degradation = mpm::Degradation::isotropic;
-  else m.expected("degradation", "one of \"tensile\" (spectral, [HH17] eq. (26)-(27)), \"isotropic\" ([XLS21] eq. (7))");
+  if (degradation == "tensile")
+    spec.degradation = mpm::Degradation::tensile_spectral;
+  else if (degradation == "isotropic")
+    spec.degradation = mpm::Degradation::isotropic;
+  else
+    m.expected(
+        "degradation",
+        "one of \"tensile\" (spectral, [HH17] eq. (26)-(27)), \"isotropic\" ([XLS21] eq. (7))");
 
   if (law == "rankine") {
     if (m.has("crack_speed"))
-      m.fail("crack_speed", "expected crack_speed only with damage = \"time-to-failure\", got it with \"rankine\"");
+      m.fail(
+          "crack_speed",
+          "expected crack_speed only with damage = \"time-to-failure\", got it with \"rankine\"");
     mpm::RankineSoftening r;
     r.fracture_energy = m.quantity("fracture_energy", QK::energy_per_area);
     if (!(r.fracture_energy > 0.0)) m.expected("fracture_energy", "a positive fracture energy G_f");
@@ -153,16 +175,21 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     // stronger draws that snap back fail without softening (warned in assign_strengths).
     if (spec.weibull)
       check_softening(m, spec, r,
-                      mpm::weibull_median_strength(particle_spacing * particle_spacing, spec.weibull_strength, 2),
-                      "the Weibull median at the particle volume", grid, particle_spacing, band_width);
+                      mpm::weibull_median_strength(particle_spacing * particle_spacing,
+                                                   spec.weibull_strength, 2),
+                      "the Weibull median at the particle volume", grid, particle_spacing,
+                      band_width);
     else
       check_softening(m, spec, r, spec.strength, "strength", grid, particle_spacing, band_width);
   } else {
     if (m.has("fracture_energy"))
-      m.fail("fracture_energy", "expected fracture_energy only with damage = \"rankine\", got it with \"time-to-failure\"");
+      m.fail("fracture_energy",
+             "expected fracture_energy only with damage = \"rankine\", got it with "
+             "\"time-to-failure\"");
     mpm::TimeToFailure t;
     t.crack_speed = m.quantity("crack_speed", QK::velocity);
-    if (!(t.crack_speed > 0.0)) m.expected("crack_speed", "a positive crack speed c_f ([HH17] eq. (24))");
+    if (!(t.crack_speed > 0.0))
+      m.expected("crack_speed", "a positive crack speed c_f ([HH17] eq. (24))");
     spec.damage = t;
   }
 }
@@ -191,12 +218,15 @@ void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& sect
     const auto* rankine = std::get_if<mpm::RankineSoftening>(&spec.damage);
     for (std::size_t k = 0; k < mine.size(); ++k) {
       P.strength[mine[k]] = s[k];
-      if (rankine && !std::isfinite(mpm::rankine_softening_modulus(s[k], *rankine, l_ch))) ++snapping;
+      if (rankine && !std::isfinite(mpm::rankine_softening_modulus(s[k], *rankine, l_ch)))
+        ++snapping;
     }
     if (snapping > 0)
-      std::cerr << sections[m].file() << ":" << sections[m].line_of("weibull") << ": warning: material '" << spec.name
-                << "': " << snapping << " of " << mine.size()
-                << " particles drew a Weibull strength for which the cell is too coarse (snap-back, H̄ l_ch >= 1); "
+      std::cerr << sections[m].file() << ":" << sections[m].line_of("weibull")
+                << ": warning: material '" << spec.name << "': " << snapping << " of "
+                << mine.size()
+                << " particles drew a Weibull strength for which the cell is too coarse "
+                   "(snap-back, H̄ l_ch >= 1); "
                    "they fail without softening\n";
   }
 }
@@ -209,8 +239,11 @@ mpm::FrictionLaw read_friction(const Section& s, std::string_view k) {
     return mpm::CoulombFriction{mu};
   }
   if (!n || !n->is_table())
-    s.expected(k, "a Coulomb friction coefficient (a number >= 0) or a friction-law table { law = \"coulomb\" | "
-                  "\"velocity-dependent\" | \"adhesion\" | \"static-dynamic\" | \"thermal-softening\", ... }");
+    s.expected(k,
+               "a Coulomb friction coefficient (a number >= 0) or a friction-law table { law = "
+               "\"coulomb\" | "
+               "\"velocity-dependent\" | \"adhesion\" | \"static-dynamic\" | "
+               "\"thermal-softening\", ... }");
   const Section f = s.table(k);
   const std::string law = f.optional_string("law").value_or("coulomb");
   auto coefficient = [&](std::string_view key) {
@@ -234,9 +267,11 @@ mpm::FrictionLaw read_friction(const Section& s, std::string_view k) {
     mpm::AdhesiveFriction a;
     a.coefficient = coefficient("mu");
     a.shear_strength = f.quantity("shear_strength", QK::pressure);
-    if (!(a.shear_strength >= 0.0)) f.expected("shear_strength", "an adhesive shear strength S_a >= 0");
+    if (!(a.shear_strength >= 0.0))
+      f.expected("shear_strength", "an adhesive shear strength S_a >= 0");
     a.tensile_strength = f.optional_quantity("tensile_strength", QK::pressure).value_or(0.0);
-    if (!(a.tensile_strength >= 0.0)) f.expected("tensile_strength", "an adhesive tensile strength N_a >= 0");
+    if (!(a.tensile_strength >= 0.0))
+      f.expected("tensile_strength", "an adhesive tensile strength N_a >= 0");
     return a;
   }
   if (law == "static-dynamic") {  // [NBS18] eq. (42)-(43)
@@ -246,7 +281,9 @@ mpm::FrictionLaw read_friction(const Section& s, std::string_view k) {
     sd.dynamic_coefficient = coefficient("mu_dynamic");
     sd.half_velocity = f.quantity("half_velocity", QK::velocity);
     if (!(sd.half_velocity >= 0.0))
-      f.expected("half_velocity", "a slip speed v½ >= 0 at which μ is halfway between μ_s and μ_d (0 = a sharp step)");
+      f.expected(
+          "half_velocity",
+          "a slip speed v½ >= 0 at which μ is halfway between μ_s and μ_d (0 = a sharp step)");
     return sd;
   }
   if (law == "thermal-softening") {  // [XLS21] eq. (15)
@@ -254,50 +291,70 @@ mpm::FrictionLaw read_friction(const Section& s, std::string_view k) {
     mpm::ThermalSofteningFriction t;
     t.coefficient = coefficient("mu");
     t.reference_temperature = f.quantity("theta_ref", QK::temperature);
-    if (!(t.reference_temperature >= 0.0)) f.expected("theta_ref", "an absolute temperature >= 0 K");
+    if (!(t.reference_temperature >= 0.0))
+      f.expected("theta_ref", "an absolute temperature >= 0 K");
     t.damage_temperature = f.quantity("theta_dam", QK::temperature);
     if (!(t.damage_temperature > t.reference_temperature))
-      f.expected("theta_dam", "a temperature above theta_ref = " + si(t.reference_temperature, "K"));
+      f.expected("theta_dam",
+                 "a temperature above theta_ref = " + si(t.reference_temperature, "K"));
     return t;
   }
-  f.expected("law", "one of \"coulomb\", \"velocity-dependent\", \"adhesion\", \"static-dynamic\", \"thermal-softening\"");
+  f.expected("law",
+             "one of \"coulomb\", \"velocity-dependent\", \"adhesion\", \"static-dynamic\", "
+             "\"thermal-softening\"");
 }
 
 mpm::ContactSpec<2> read_contact(const Section& c) {
-  c.allow_only({"partitioning", "friction", "critical_damage", "minimum_damage", "rebuild_fraction", "gap_test",
-                "conductance", "conductance_pressure", "conductance_exponent",
-                "normal", "nodal_gradient", "friction_heating"});
+  c.allow_only({"partitioning", "friction", "critical_damage", "minimum_damage", "rebuild_fraction",
+                "gap_test", "conductance", "conductance_pressure", "conductance_exponent", "normal",
+                "nodal_gradient", "friction_heating"});
   mpm::ContactSpec<2> spec;
   const std::string partitioning = c.optional_string("partitioning").value_or("auto");
-  if (partitioning == "auto") spec.partitioning = mpm::Partitioning::automatic;
-  else if (partitioning == "off") spec.partitioning = mpm::Partitioning::off;
-  else if (partitioning == "bodies") spec.partitioning = mpm::Partitioning::bodies;
-  else c.expected("partitioning", "one of \"auto\", \"off\", \"bodies\"");
+  if (partitioning == "auto")
+    spec.partitioning = mpm::Partitioning::automatic;
+  else if (partitioning == "off")
+    spec.partitioning = mpm::Partitioning::off;
+  else if (partitioning == "bodies")
+    spec.partitioning = mpm::Partitioning::bodies;
+  else
+    c.expected("partitioning", "one of \"auto\", \"off\", \"bodies\"");
   const std::string nodal = c.optional_string("nodal_gradient").value_or("principal");
-  if (nodal == "principal") spec.nodal_gradient = mpm::NodalGradientRule::principal;
-  else if (nodal == "largest") spec.nodal_gradient = mpm::NodalGradientRule::largest;
-  else c.expected("nodal_gradient", "one of \"principal\" (structure tensor), \"largest\" ([HH17] Alg. 1)");
+  if (nodal == "principal")
+    spec.nodal_gradient = mpm::NodalGradientRule::principal;
+  else if (nodal == "largest")
+    spec.nodal_gradient = mpm::NodalGradientRule::largest;
+  else
+    c.expected("nodal_gradient",
+               "one of \"principal\" (structure tensor), \"largest\" ([HH17] Alg. 1)");
   if (c.has("friction")) spec.friction = read_friction(c, "friction");
   const std::string heating = c.optional_string("friction_heating").value_or("second-order");
-  if (heating == "second-order") spec.friction_work_order = mpm::FrictionWorkOrder::second;
-  else if (heating == "first-order") spec.friction_work_order = mpm::FrictionWorkOrder::first;
-  else c.expected("friction_heating", "one of \"second-order\" ([NBS18] eq. (34)-(36)), \"first-order\" ([NBS18] eq. (27))");
+  if (heating == "second-order")
+    spec.friction_work_order = mpm::FrictionWorkOrder::second;
+  else if (heating == "first-order")
+    spec.friction_work_order = mpm::FrictionWorkOrder::first;
+  else
+    c.expected(
+        "friction_heating",
+        "one of \"second-order\" ([NBS18] eq. (34)-(36)), \"first-order\" ([NBS18] eq. (27))");
   if (auto d = c.optional_number("critical_damage")) {
     if (!(*d > 0.0 && *d <= 1.0)) c.expected("critical_damage", "a damage level 0 < D_cr <= 1");
     spec.critical_damage = *d;
   }
   if (auto d = c.optional_number("minimum_damage")) {
-    if (!(*d >= 0.0 && *d < 1.0)) c.expected("minimum_damage", "a damage level 0 <= D_min < 1 ([HH17] eq. (21))");
+    if (!(*d >= 0.0 && *d < 1.0))
+      c.expected("minimum_damage", "a damage level 0 <= D_min < 1 ([HH17] eq. (21))");
     spec.minimum_damage = *d;
   }
   if (auto f = c.optional_number("rebuild_fraction")) {
     if (!(*f >= 0.0 && *f <= 1.0))
-      c.expected("rebuild_fraction", "a fraction of the kernel radius 0 <= rebuild_fraction <= 1 (0 = every step)");
+      c.expected("rebuild_fraction",
+                 "a fraction of the kernel radius 0 <= rebuild_fraction <= 1 (0 = every step)");
     spec.rebuild_fraction = *f;
   }
   spec.position_gap_test = optional_bool(c, "gap_test").value_or(false);
   if (auto n = c.optional_vector("normal", std::nullopt)) {
-    if (!(n->norm() > 0.0)) c.expected("normal", "a non-zero normal vector (the contact normal of field 0)");
+    if (!(n->norm() > 0.0))
+      c.expected("normal", "a non-zero normal vector (the contact normal of field 0)");
     spec.normal = *n / n->norm();
   }
   return spec;

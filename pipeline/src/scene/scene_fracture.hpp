@@ -19,15 +19,16 @@ const std::vector<std::string_view>& damage_keys();
 /// Reads damage, strength, fracture_energy, crack_speed, degradation and weibull of one material
 /// into `spec` (whose elastic constants are already set). `thickness` is [physics] thickness [m]
 /// (needed for Weibull volumes in 2D). For Rankine softening, refuses a cell whose diagonal
-/// l_ch = h √2 makes H̄ l_ch ≥ 1 (snap-back, [XLS21] eq. (20)-(21)), naming the largest admissible cell size;
-/// `particle_spacing` s = h/n gives the particle volume s² × thickness at which a Weibull material's
-/// median strength is checked.
+/// l_ch = h √2 makes H̄ l_ch ≥ 1 (snap-back, [XLS21] eq. (20)-(21)), naming the largest admissible
+/// cell size; `particle_spacing` s = h/n gives the particle volume s² × thickness at which a
+/// Weibull material's median strength is checked.
 void read_damage(const Section& material, mpm::MaterialSpec& spec, std::optional<double> thickness,
                  const mpm::GridSpec<2>& grid, double particle_spacing);
 
 /// Fills Particles::strength: +inf for materials without damage, σ_f for a uniform strength, and a
 /// Weibull draw ([HH17] eq. (25)) per particle otherwise, one seeded stream per material over its
-/// particles in particle order. Warns on stderr when drawn Rankine strengths snap back at this cell.
+/// particles in particle order. Warns on stderr when drawn Rankine strengths snap back at this
+/// cell.
 void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& material_sections);
 
 /// A friction law written as a number (Coulomb μ) or a table { law = "...", ... } under key k of s.
@@ -36,9 +37,10 @@ mpm::FrictionLaw read_friction(const Section& s, std::string_view k);
 /// The [contact] table.
 mpm::ContactSpec<2> read_contact(const Section& contact);
 
-/// One [[loads]] entry. `bodies` maps a body name — or the name of an image/grain entry, meaning all
-/// its grains — to body ids. Selects the loaded particles in problem.particles.
-mpm::TractionLoad<2> read_load(const Section& load, std::size_t index, const mpm::Problem<2>& problem,
+/// One [[loads]] entry. `bodies` maps a body name — or the name of an image/grain entry, meaning
+/// all its grains — to body ids. Selects the loaded particles in problem.particles.
+mpm::TractionLoad<2> read_load(const Section& load, std::size_t index,
+                               const mpm::Problem<2>& problem,
                                const std::map<std::string, std::vector<std::int32_t>>& bodies);
 
 /// True when a [[loads]] entry is a heat input (heat_flux, or film_coefficient with ambient) rather
@@ -46,7 +48,8 @@ mpm::TractionLoad<2> read_load(const Section& load, std::size_t index, const mpm
 bool is_heat_load(const Section& load);
 
 /// A heat-input [[loads]] entry (same particle selection as a traction; [XLS21] eq. (44), (57)).
-mpm::HeatFluxLoad read_heat_load(const Section& load, std::size_t index, const mpm::Problem<2>& problem,
+mpm::HeatFluxLoad read_heat_load(const Section& load, std::size_t index,
+                                 const mpm::Problem<2>& problem,
                                  const std::map<std::string, std::vector<std::int32_t>>& bodies);
 
 }  // namespace fragmpm::pipeline::scene_detail

@@ -22,9 +22,9 @@ struct GrainEntry {
 /// True when the entry names a grain source (image or grains) rather than a shape.
 bool is_grain_source(const Section& body);
 
-/// The segmentation options of an `image = …` entry (pixel_size, input, crop, threshold, …), reading
-/// the image at `image_path` (already resolved). Throws SceneError for a bad key. Also used by
-/// `fragmpm pipeline` to draw the segmentation preview the scene's grains come from.
+/// The segmentation options of an `image = …` entry (pixel_size, input, crop, threshold, …),
+/// reading the image at `image_path` (already resolved). Throws SceneError for a bad key. Also used
+/// by `fragmpm pipeline` to draw the segmentation preview the scene's grains come from.
 SegmentOptions read_segment_options(const Section& body, const std::string& image_path);
 
 /// Reads, segments and samples one grain-source entry. `scene_path` locates relative image and
@@ -32,6 +32,7 @@ SegmentOptions read_segment_options(const Section& body, const std::string& imag
 /// bad pixel size or option, a missing or unreadable image or grain file, grains outside the grid
 /// domain, or no grain that holds a particle.
 GrainEntry read_grain_entry(const Section& body, const std::string& scene_path, int material,
-                            const mpm::MaterialSpec& spec, const mpm::GridSpec<2>& grid, int particles_per_cell);
+                            const mpm::MaterialSpec& spec, const mpm::GridSpec<2>& grid,
+                            int particles_per_cell);
 
 }  // namespace fragmpm::pipeline::scene_detail

@@ -34,11 +34,14 @@ std::vector<double> time_list(const Section& s, std::string_view k) {
         fail(s.file(), line, key, err.what());
       }
     } else {
-      fail(s.file(), line, key, "expected a time (a number in s or a string with a unit), got " + describe(e));
+      fail(s.file(), line, key,
+           "expected a time (a number in s or a string with a unit), got " + describe(e));
     }
     if (!std::isfinite(t)) fail(s.file(), line, key, "expected a finite time, got " + describe(e));
     if (!out.empty() && !(t > out.back()))
-      fail(s.file(), line, key, "expected times in increasing order, got " + si(t, "s") + " after " + si(out.back(), "s"));
+      fail(s.file(), line, key,
+           "expected times in increasing order, got " + si(t, "s") + " after " +
+               si(out.back(), "s"));
     out.push_back(t);
   }
   return out;
@@ -46,21 +49,26 @@ std::vector<double> time_list(const Section& s, std::string_view k) {
 
 void read_traction(const Section& l, mpm::TractionLoad<2>& load) {
   const toml::node* n = l.find("traction");
-  if (!n) l.fail("traction", "missing required key: expected a traction [tx, ty] (pressures) or a table "
-                             "{ times = [...], values = [[tx, ty], ...] }");
+  if (!n)
+    l.fail("traction",
+           "missing required key: expected a traction [tx, ty] (pressures) or a table "
+           "{ times = [...], values = [[tx, ty], ...] }");
   if (n->is_array()) {
     load.times = {0.0};
     load.tractions = {l.vector("traction", QK::pressure)};
     return;
   }
   if (!n->is_table())
-    l.expected("traction", "a constant traction [tx, ty] (pressures) or a table { times = [...], values = [[tx, ty], ...] }");
+    l.expected("traction",
+               "a constant traction [tx, ty] (pressures) or a table { times = [...], values = "
+               "[[tx, ty], ...] }");
   const Section t = l.table("traction");
   t.allow_only({"times", "values"});
   load.times = time_list(t, "times");
   load.tractions = t.point_list("values", QK::pressure);
   if (load.tractions.size() != load.times.size())
-    t.fail("values", "expected one traction [tx, ty] per time (" + std::to_string(load.times.size()) + "), got " +
+    t.fail("values", "expected one traction [tx, ty] per time (" +
+                         std::to_string(load.times.size()) + "), got " +
                          std::to_string(load.tractions.size()));
 }
 
@@ -73,43 +81,49 @@ namespace {
 void select_boundary(const Section& l, const mpm::Problem<2>& problem,
                      const std::map<std::string, std::vector<std::int32_t>>& bodies,
                      std::vector<std::int64_t>& particles, std::vector<double>& boundary_measure) {
-
   const std::string body = l.string("body");
   const auto found = bodies.find(body);
   if (found == bodies.end())
-    l.expected("body", "the name of a body in [[bodies]] (or of an image/grain entry, meaning all its grains)");
+    l.expected(
+        "body",
+        "the name of a body in [[bodies]] (or of an image/grain entry, meaning all its grains)");
   std::vector<bool> in_body(problem.body_names.size(), false);
   for (std::int32_t b : found->second) in_body[static_cast<std::size_t>(b)] = true;
 
   if (!l.has("side") && !l.has("region"))
-    l.fail("side", "missing required key: expected side = \"+x\" | \"-x\" | \"+y\" | \"-y\" or region = { min = [x, y], "
-                   "max = [x, y] } (or both)");
+    l.fail("side",
+           "missing required key: expected side = \"+x\" | \"-x\" | \"+y\" | \"-y\" or region = { "
+           "min = [x, y], "
+           "max = [x, y] } (or both)");
   std::optional<std::pair<Vec2, Vec2>> region;
   if (l.has("region")) {
     const Section r = l.table("region");
     r.allow_only({"min", "max"});
     const Vec2 lo = r.vector("min", QK::length), hi = r.vector("max", QK::length);
     if (!(hi.x() >= lo.x() && hi.y() >= lo.y()))
-      r.fail("max", "expected max >= min in x and y, got max = [" + si(hi.x(), "m") + ", " + si(hi.y(), "m") +
-                        "] and min = [" + si(lo.x(), "m") + ", " + si(lo.y(), "m") + "]");
+      r.fail("max", "expected max >= min in x and y, got max = [" + si(hi.x(), "m") + ", " +
+                        si(hi.y(), "m") + "] and min = [" + si(lo.x(), "m") + ", " +
+                        si(lo.y(), "m") + "]");
     region.emplace(lo, hi);
   }
   auto in_region = [&](const Vec2& x) {
-    return !region || (x.x() >= region->first.x() && x.x() <= region->second.x() && x.y() >= region->first.y() &&
-                       x.y() <= region->second.y());
+    return !region || (x.x() >= region->first.x() && x.x() <= region->second.x() &&
+                       x.y() >= region->first.y() && x.y() <= region->second.y());
   };
 
   const mpm::Particles<2>& P = problem.particles;
   // Extent of a particle's CPDI domain along each axis: |r1| + |r2| component-wise [m].
-  auto extent = [&](std::size_t p) -> Vec2 { return P.domain[p].col(0).cwiseAbs() + P.domain[p].col(1).cwiseAbs(); };
+  auto extent = [&](std::size_t p) -> Vec2 {
+    return P.domain[p].col(0).cwiseAbs() + P.domain[p].col(1).cwiseAbs();
+  };
   if (l.has("side")) {
     const std::string side = l.string("side");
     if (side != "+x" && side != "-x" && side != "+y" && side != "-y")
       l.expected("side", "one of \"+x\", \"-x\", \"+y\", \"-y\"");
     const int axis = side[1] == 'x' ? 0 : 1;
     const double sign = side[0] == '+' ? 1.0 : -1.0;
-    // The particles whose domain edge lies on the body's extreme edge on that side; each carries the
-    // length of that edge, its domain's extent along the other axis.
+    // The particles whose domain edge lies on the body's extreme edge on that side; each carries
+    // the length of that edge, its domain's extent along the other axis.
     double extreme = -std::numeric_limits<double>::infinity();
     for (std::size_t p = 0; p < P.size(); ++p)
       if (in_body[static_cast<std::size_t>(P.body[p])])
@@ -124,7 +138,8 @@ void select_boundary(const Section& l, const mpm::Problem<2>& problem,
   } else {
     // Boundary particles (surface flag) inside the box; each carries its domain's edge length √V₀.
     for (std::size_t p = 0; p < P.size(); ++p) {
-      if (!in_body[static_cast<std::size_t>(P.body[p])] || !P.surface[p] || !in_region(P.x[p])) continue;
+      if (!in_body[static_cast<std::size_t>(P.body[p])] || !P.surface[p] || !in_region(P.x[p]))
+        continue;
       particles.push_back(static_cast<std::int64_t>(p));
       boundary_measure.push_back(std::sqrt(std::abs(P.domain[p].determinant())));
     }
@@ -132,7 +147,8 @@ void select_boundary(const Section& l, const mpm::Problem<2>& problem,
   if (particles.empty())
     l.fail(region ? "region" : "side",
            "expected a load that selects at least one particle of '" + body + "', got none" +
-               (l.has("side") ? " on that side inside the region" : " (no boundary particle of the body lies in the region)"));
+               (l.has("side") ? " on that side inside the region"
+                              : " (no boundary particle of the body lies in the region)"));
 }
 
 }  // namespace
@@ -151,7 +167,8 @@ mpm::TractionLoad<2> read_load(const Section& l, std::size_t index, const mpm::P
   return load;
 }
 
-mpm::HeatFluxLoad read_heat_load(const Section& l, std::size_t index, const mpm::Problem<2>& problem,
+mpm::HeatFluxLoad read_heat_load(const Section& l, std::size_t index,
+                                 const mpm::Problem<2>& problem,
                                  const std::map<std::string, std::vector<std::int32_t>>& bodies) {
   l.allow_only({"name", "body", "side", "region", "heat_flux", "film_coefficient", "ambient"});
   mpm::HeatFluxLoad load;
@@ -159,16 +176,20 @@ mpm::HeatFluxLoad read_heat_load(const Section& l, std::size_t index, const mpm:
   select_boundary(l, problem, bodies, load.particles, load.boundary_measure);
   if (l.has("heat_flux")) {
     if (l.has("film_coefficient") || l.has("ambient"))
-      l.fail("heat_flux", "expected either heat_flux or film_coefficient with ambient (convection), got both");
+      l.fail("heat_flux",
+             "expected either heat_flux or film_coefficient with ambient (convection), got both");
     load.kind = mpm::ThermalWallKind::flux;
     load.flux = l.quantity("heat_flux", QK::heat_flux);
     return load;
   }
   load.kind = mpm::ThermalWallKind::convection;
-  if (!l.has("film_coefficient")) l.fail("film_coefficient", "missing required key: convection needs film_coefficient");
+  if (!l.has("film_coefficient"))
+    l.fail("film_coefficient", "missing required key: convection needs film_coefficient");
   load.film_coefficient = l.quantity("film_coefficient", QK::film_coefficient);
-  if (!(load.film_coefficient >= 0.0)) l.expected("film_coefficient", "a heat transfer coefficient >= 0");
-  if (!l.has("ambient")) l.fail("ambient", "missing required key: convection needs the ambient temperature");
+  if (!(load.film_coefficient >= 0.0))
+    l.expected("film_coefficient", "a heat transfer coefficient >= 0");
+  if (!l.has("ambient"))
+    l.fail("ambient", "missing required key: convection needs the ambient temperature");
   load.temperature = l.quantity("ambient", QK::temperature);
   if (!(load.temperature > 0.0)) l.expected("ambient", "an absolute temperature above 0 K");
   return load;

@@ -1,5 +1,6 @@
-// Scene file → mpm::Problem<2> (docs/design.md; format in scenes/README.md). Reads every section with
-// strict keys and units, then samples the bodies and runs the cross-checks of scene_validate.cpp.
+// Scene file → mpm::Problem<2> (docs/design.md; format in scenes/README.md). Reads every section
+// with strict keys and units, then samples the bodies and runs the cross-checks of
+// scene_validate.cpp.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -40,8 +41,8 @@ class NameRegistry {
   void add(const Section& s, const std::string& name) {
     const auto [it, inserted] = lines_.emplace(name, s.line_of("name"));
     if (!inserted)
-      s.fail("name", "expected a " + what_ + " name not used before, got \"" + name + "\" (already defined at line " +
-                         std::to_string(it->second) + ")");
+      s.fail("name", "expected a " + what_ + " name not used before, got \"" + name +
+                         "\" (already defined at line " + std::to_string(it->second) + ")");
     order_.push_back(name);
   }
   const std::vector<std::string>& names() const { return order_; }
@@ -64,20 +65,26 @@ int read_grid(const Section& g, mpm::GridSpec<2>& grid) {
   grid.max = g.vector("max", QK::length);
   for (int d = 0; d < 2; ++d)
     if (!(grid.max[d] > grid.min[d]))
-      g.fail("max", "expected max > min in x and y, got max = [" + si(grid.max.x(), "m") + ", " + si(grid.max.y(), "m") +
-                        "] and min = [" + si(grid.min.x(), "m") + ", " + si(grid.min.y(), "m") + "]");
+      g.fail("max", "expected max > min in x and y, got max = [" + si(grid.max.x(), "m") + ", " +
+                        si(grid.max.y(), "m") + "] and min = [" + si(grid.min.x(), "m") + ", " +
+                        si(grid.min.y(), "m") + "]");
   const Vec2 extent = grid.max - grid.min;
   if (grid.cell_size > extent.minCoeff())
-    g.fail("cell_size", "expected a cell size no larger than the domain (" + si(extent.x(), "m") + " x " +
-                            si(extent.y(), "m") + "), got " + si(grid.cell_size, "m"));
+    g.fail("cell_size", "expected a cell size no larger than the domain (" + si(extent.x(), "m") +
+                            " x " + si(extent.y(), "m") + "), got " + si(grid.cell_size, "m"));
   const std::string sf = g.optional_string("shape_function").value_or("cpdi");
-  if (sf == "cpdi") grid.shape_function = mpm::ShapeFunctionKind::cpdi;
-  else if (sf == "linear") grid.shape_function = mpm::ShapeFunctionKind::linear;
-  else if (sf == "ugimp") grid.shape_function = mpm::ShapeFunctionKind::ugimp;
-  else g.expected("shape_function", "one of \"cpdi\", \"linear\", \"ugimp\"");
+  if (sf == "cpdi")
+    grid.shape_function = mpm::ShapeFunctionKind::cpdi;
+  else if (sf == "linear")
+    grid.shape_function = mpm::ShapeFunctionKind::linear;
+  else if (sf == "ugimp")
+    grid.shape_function = mpm::ShapeFunctionKind::ugimp;
+  else
+    g.expected("shape_function", "one of \"cpdi\", \"linear\", \"ugimp\"");
   const long long n = g.optional_integer("particles_per_cell").value_or(2);
   if (n < 1 || n > kMaxParticlesPerCell)
-    g.expected("particles_per_cell", "an integer from 1 to " + std::to_string(kMaxParticlesPerCell) + " (per direction)");
+    g.expected("particles_per_cell",
+               "an integer from 1 to " + std::to_string(kMaxParticlesPerCell) + " (per direction)");
   return static_cast<int>(n);
 }
 
@@ -94,11 +101,12 @@ void read_time(const Section& t, mpm::TimeSpec& time) {
     t.expected("pic_fraction", "a PIC fraction 0 <= pic_fraction <= 1 ([XLS21] eq. (64))");
   time.thermal_pic_fraction = t.optional_number("thermal_pic_fraction").value_or(0.0);
   if (!(time.thermal_pic_fraction >= 0.0 && time.thermal_pic_fraction <= 1.0))
-    t.expected("thermal_pic_fraction", "a PIC fraction 0 <= thermal_pic_fraction <= 1 (0 = [XLS21] eq. (62))");
+    t.expected("thermal_pic_fraction",
+               "a PIC fraction 0 <= thermal_pic_fraction <= 1 (0 = [XLS21] eq. (62))");
 }
 
-mpm::MaterialSpec read_material(const Section& m, std::optional<double> thickness, const mpm::GridSpec<2>& grid,
-                                double particle_spacing) {
+mpm::MaterialSpec read_material(const Section& m, std::optional<double> thickness,
+                                const mpm::GridSpec<2>& grid, double particle_spacing) {
   std::vector<std::string_view> keys = {"name", "model", "E", "nu", "K", "G", "density"};
   keys.insert(keys.end(), damage_keys().begin(), damage_keys().end());
   keys.insert(keys.end(), thermal_material_keys().begin(), thermal_material_keys().end());
@@ -106,11 +114,13 @@ mpm::MaterialSpec read_material(const Section& m, std::optional<double> thicknes
   mpm::MaterialSpec spec;
   spec.name = m.name("name");
   const std::string model = m.optional_string("model").value_or("neo-hookean");
-  if (model != "neo-hookean") m.expected("model", "\"neo-hookean\" (the only material model so far)");
+  if (model != "neo-hookean")
+    m.expected("model", "\"neo-hookean\" (the only material model so far)");
   const bool young = m.has("E") || m.has("nu");
   const bool bulk = m.has("K") || m.has("G");
   if (young && bulk)
-    m.fail(m.has("K") ? "K" : "G", "expected either (E, nu) or (K, G), got both kinds of elastic constants");
+    m.fail(m.has("K") ? "K" : "G",
+           "expected either (E, nu) or (K, G), got both kinds of elastic constants");
   if (!young && !bulk) m.fail("E", "missing required key: expected either E and nu, or K and G");
   if (young) {
     const double E = m.quantity("E", QK::pressure);
@@ -134,8 +144,8 @@ mpm::MaterialSpec read_material(const Section& m, std::optional<double> thicknes
 Shape read_shape(const Section& b) {
   Shape s;
   const std::string kind = b.string("shape");
-  const std::vector<std::string_view> common = {"name", "material", "shape", "velocity", "angular_velocity",
-                                                 "temperature"};
+  const std::vector<std::string_view> common = {"name",     "material",         "shape",
+                                                "velocity", "angular_velocity", "temperature"};
   auto allow = [&](std::initializer_list<std::string_view> extra) {
     std::vector<std::string_view> keys = common;
     keys.insert(keys.end(), extra);
@@ -153,8 +163,9 @@ Shape read_shape(const Section& b) {
     s.min = b.vector("min", QK::length);
     s.max = b.vector("max", QK::length);
     if (!(s.max.x() > s.min.x() && s.max.y() > s.min.y()))
-      b.fail("max", "expected max > min in x and y, got max = [" + si(s.max.x(), "m") + ", " + si(s.max.y(), "m") +
-                        "] and min = [" + si(s.min.x(), "m") + ", " + si(s.min.y(), "m") + "]");
+      b.fail("max", "expected max > min in x and y, got max = [" + si(s.max.x(), "m") + ", " +
+                        si(s.max.y(), "m") + "] and min = [" + si(s.min.x(), "m") + ", " +
+                        si(s.min.y(), "m") + "]");
   } else if (kind == "polygon") {
     allow({"vertices"});
     s.kind = ShapeKind::polygon;
@@ -167,10 +178,12 @@ Shape read_shape(const Section& b) {
       auto edge = [&](int e) {
         return std::to_string(e) + "-" + std::to_string((static_cast<std::size_t>(e) + 1) % n);
       };
-      b.fail("vertices", "expected a simple polygon, got edges between vertices " + edge(e1) + " and " + edge(e2) +
+      b.fail("vertices", "expected a simple polygon, got edges between vertices " + edge(e1) +
+                             " and " + edge(e2) +
                              (e1 == e2 ? " (a repeated vertex)" : " that meet or fold back"));
     }
-    if (!(polygon_area(s.vertices) > 0.0)) b.fail("vertices", "expected a polygon with positive area, got zero area");
+    if (!(polygon_area(s.vertices) > 0.0))
+      b.fail("vertices", "expected a polygon with positive area, got zero area");
   } else {
     b.expected("shape", "one of \"disk\", \"box\", \"polygon\"");
   }
@@ -179,7 +192,9 @@ Shape read_shape(const Section& b) {
 
 int read_body_material(const Section& b, const NameRegistry& materials) {
   const int m = materials.index(b.string("material"));
-  if (m < 0) b.expected("material", "the name of a material defined in [[materials]] (" + quoted_list(materials.names()) + ")");
+  if (m < 0)
+    b.expected("material", "the name of a material defined in [[materials]] (" +
+                               quoted_list(materials.names()) + ")");
   return m;
 }
 
@@ -188,7 +203,8 @@ BodyEntry read_body(const Section& b, const NameRegistry& materials) {
   body.sample.material = read_body_material(b, materials);
   body.sample.shape = read_shape(b);
   body.sample.velocity = b.optional_vector("velocity", QK::velocity).value_or(Vec2::Zero());
-  body.sample.angular_velocity = b.optional_quantity("angular_velocity", QK::angular_velocity).value_or(0.0);
+  body.sample.angular_velocity =
+      b.optional_quantity("angular_velocity", QK::angular_velocity).value_or(0.0);
   return body;
 }
 
@@ -207,12 +223,14 @@ mpm::VelocityHistory<2> read_history(const Section& h) {
     v.t_start = h.optional_quantity("t_start", QK::time).value_or(0.0);
     if (!(v.t_start >= 0.0)) h.expected("t_start", "a time t_start >= 0");
     v.t_end = h.quantity("t_end", QK::time);
-    if (!(v.t_end > v.t_start)) h.expected("t_end", "a time t_end > t_start = " + si(v.t_start, "s"));
+    if (!(v.t_end > v.t_start))
+      h.expected("t_end", "a time t_end > t_start = " + si(v.t_start, "s"));
   } else if (type == "sinusoid") {
     h.allow_only({"type", "offset", "amplitude", "frequency", "phase", "t_start"});
     v.kind = mpm::HistoryKind::sinusoid;
     v.t_start = h.optional_quantity("t_start", QK::time).value_or(0.0);
-    if (!(v.t_start >= 0.0)) h.expected("t_start", "a time t_start >= 0 (the sinusoid starts then)");
+    if (!(v.t_start >= 0.0))
+      h.expected("t_start", "a time t_start >= 0 (the sinusoid starts then)");
     v.from = h.optional_vector("offset", QK::velocity).value_or(Vec2::Zero());
     v.amplitude = h.vector("amplitude", QK::velocity);
     v.frequency = h.quantity("frequency", QK::frequency);
@@ -230,17 +248,24 @@ mpm::WallSpec<2> read_wall(const Section& w) {
   wall.name = w.name("name");
   wall.point = w.vector("point", QK::length);
   const Vec2 n = w.vector("normal", std::nullopt);
-  if (!(n.norm() > 0.0)) w.expected("normal", "a non-zero normal vector pointing into the material side");
+  if (!(n.norm() > 0.0))
+    w.expected("normal", "a non-zero normal vector pointing into the material side");
   wall.normal = n / n.norm();
   const std::string kind = w.optional_string("kind").value_or("contact");
-  if (kind == "contact") wall.kind = mpm::WallKind::contact;
-  else if (kind == "roller") wall.kind = mpm::WallKind::roller;
-  else if (kind == "fixed") wall.kind = mpm::WallKind::fixed;
-  else if (kind == "thermal") wall.kind = mpm::WallKind::contact;  // a plane for a thermal condition only (parse_scene)
-  else w.expected("kind", "one of \"contact\", \"roller\", \"fixed\", \"thermal\"");
+  if (kind == "contact")
+    wall.kind = mpm::WallKind::contact;
+  else if (kind == "roller")
+    wall.kind = mpm::WallKind::roller;
+  else if (kind == "fixed")
+    wall.kind = mpm::WallKind::fixed;
+  else if (kind == "thermal")
+    wall.kind = mpm::WallKind::contact;  // a plane for a thermal condition only (parse_scene)
+  else
+    w.expected("kind", "one of \"contact\", \"roller\", \"fixed\", \"thermal\"");
   if (w.has("friction")) {
     if (wall.kind != mpm::WallKind::contact)
-      w.fail("friction", "expected no friction for kind = \"" + kind + "\" (friction applies to contact walls only)");
+      w.fail("friction", "expected no friction for kind = \"" + kind +
+                             "\" (friction applies to contact walls only)");
     wall.friction = read_friction(w, "friction");
   }
   if (auto h = w.optional_table("velocity")) wall.velocity = read_history(*h);
@@ -250,14 +275,16 @@ mpm::WallSpec<2> read_wall(const Section& w) {
     wall.region.min = r->vector("min", QK::length);
     wall.region.max = r->vector("max", QK::length);
     if (!(wall.region.max.array() > wall.region.min.array()).all())
-      r->expected("max", "a corner above and to the right of min = (" + si(wall.region.min.x(), "m") + ", " +
-                             si(wall.region.min.y(), "m") + ")");
+      r->expected("max", "a corner above and to the right of min = (" +
+                             si(wall.region.min.x(), "m") + ", " + si(wall.region.min.y(), "m") +
+                             ")");
   }
   return wall;
 }
 
 /// Appends `src` to `dst`, shifting body ids by `first_body`.
-void append_particles(mpm::Particles<2>& dst, const mpm::Particles<2>& src, std::int32_t first_body) {
+void append_particles(mpm::Particles<2>& dst, const mpm::Particles<2>& src,
+                      std::int32_t first_body) {
   auto cat = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
   cat(dst.x, src.x);
   cat(dst.v, src.v);
@@ -279,18 +306,22 @@ void append_particles(mpm::Particles<2>& dst, const mpm::Particles<2>& src, std:
 
 bool never_moves(const mpm::VelocityHistory<2>& v) {
   switch (v.kind) {
-    case mpm::HistoryKind::constant: return v.from.isZero(0.0);
-    case mpm::HistoryKind::ramp: return v.from.isZero(0.0) && v.to.isZero(0.0);
-    case mpm::HistoryKind::sinusoid: return v.from.isZero(0.0) && v.amplitude.isZero(0.0);
+    case mpm::HistoryKind::constant:
+      return v.from.isZero(0.0);
+    case mpm::HistoryKind::ramp:
+      return v.from.isZero(0.0) && v.to.isZero(0.0);
+    case mpm::HistoryKind::sinusoid:
+      return v.from.isZero(0.0) && v.amplitude.isZero(0.0);
   }
   return false;
 }
 
-void read_stop(const Section& s, const NameRegistry& walls, const std::vector<mpm::WallSpec<2>>& wall_specs,
-               mpm::StopSpec& stop) {
+void read_stop(const Section& s, const NameRegistry& walls,
+               const std::vector<mpm::WallSpec<2>>& wall_specs, mpm::StopSpec& stop) {
   s.allow_only({"end_time", "max_steps", "platen_displacement", "platen"});
   if (!s.has("end_time") && !s.has("max_steps") && !s.has("platen_displacement"))
-    s.fail_table("no stop condition: expected at least one of end_time, max_steps, platen_displacement");
+    s.fail_table(
+        "no stop condition: expected at least one of end_time, max_steps, platen_displacement");
   if (auto t = s.optional_quantity("end_time", QK::time)) {
     if (!(*t > 0.0)) s.expected("end_time", "a positive time");
     stop.end_time = *t;
@@ -301,21 +332,25 @@ void read_stop(const Section& s, const NameRegistry& walls, const std::vector<mp
   }
   if (auto d = s.optional_quantity("platen_displacement", QK::length)) {
     if (!(*d > 0.0)) s.expected("platen_displacement", "a positive length");
-    if (!s.has("platen")) s.fail("platen", "missing required key: platen_displacement needs platen = \"<wall name>\"");
+    if (!s.has("platen"))
+      s.fail("platen", "missing required key: platen_displacement needs platen = \"<wall name>\"");
     stop.platen_displacement = *d;
   }
   if (s.has("platen")) {
     if (!s.has("platen_displacement"))
-      s.fail("platen", "expected platen only together with platen_displacement, got platen without it");
+      s.fail("platen",
+             "expected platen only together with platen_displacement, got platen without it");
     const std::string name = s.string("platen");
     stop.platen = walls.index(name);
     if (stop.platen < 0)
       s.expected("platen", walls.names().empty()
                                ? std::string("the name of a wall, but no [[walls]] are defined")
-                               : "the name of a wall defined in [[walls]] (" + quoted_list(walls.names()) + ")");
-    if (!s.has("end_time") && !s.has("max_steps") && never_moves(wall_specs[static_cast<std::size_t>(stop.platen)].velocity))
-      s.fail("platen", "expected a platen that moves (it is the only stop condition), got wall '" + name +
-                           "' whose velocity is zero at all times");
+                               : "the name of a wall defined in [[walls]] (" +
+                                     quoted_list(walls.names()) + ")");
+    if (!s.has("end_time") && !s.has("max_steps") &&
+        never_moves(wall_specs[static_cast<std::size_t>(stop.platen)].velocity))
+      s.fail("platen", "expected a platen that moves (it is the only stop condition), got wall '" +
+                           name + "' whose velocity is zero at all times");
   }
 }
 
@@ -324,7 +359,8 @@ void read_output(const std::optional<Section>& o, const mpm::StopSpec& stop, mpm
   if (!o) return;
   o->allow_only({"interval", "fields"});
   if (auto iv = o->optional_quantity("interval", QK::time)) {
-    if (!(*iv >= 0.0)) o->expected("interval", "a time interval >= 0 (0 = first and last frame only)");
+    if (!(*iv >= 0.0))
+      o->expected("interval", "a time interval >= 0 (0 = first and last frame only)");
     out.interval = *iv;
   }
   if (!o->has("fields")) return;
@@ -339,7 +375,8 @@ void read_output(const std::optional<Section>& o, const mpm::StopSpec& stop, mpm
                          "expected one of " + quoted_list(known) + ", got \"" + fields[i] + "\"");
     if (std::find(fields.begin(), fields.begin() + static_cast<std::ptrdiff_t>(i), fields[i]) !=
         fields.begin() + static_cast<std::ptrdiff_t>(i))
-      scene_detail::fail(o->file(), line, o->key(ek), "expected each field once, got \"" + fields[i] + "\" twice");
+      scene_detail::fail(o->file(), line, o->key(ek),
+                         "expected each field once, got \"" + fields[i] + "\" twice");
   }
   out.fields = fields;
 }
@@ -352,11 +389,12 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
     root = toml::parse(std::string_view(text), std::string_view(path));
   } catch (const toml::parse_error& e) {
     throw SceneError(path, static_cast<int>(e.source().begin.line), "",
-                     "TOML syntax error (column " + std::to_string(e.source().begin.column) + "): " +
-                         std::string(e.description()));
+                     "TOML syntax error (column " + std::to_string(e.source().begin.column) +
+                         "): " + std::string(e.description()));
   }
   const Section top(root, "", path);
-  top.allow_only({"grid", "time", "physics", "materials", "bodies", "walls", "contact", "loads", "stop", "output"});
+  top.allow_only({"grid", "time", "physics", "materials", "bodies", "walls", "contact", "loads",
+                  "stop", "output"});
 
   mpm::Problem<2> problem;
   problem.scene_path = path;
@@ -370,13 +408,15 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
     physics->allow_only({"gravity", "thickness"});
     problem.gravity = physics->optional_vector("gravity", QK::acceleration).value_or(Vec2::Zero());
     thickness = physics->optional_quantity("thickness", QK::length);
-    if (thickness && !(*thickness > 0.0)) physics->expected("thickness", "a positive out-of-plane thickness");
+    if (thickness && !(*thickness > 0.0))
+      physics->expected("thickness", "a positive out-of-plane thickness");
   }
 
   NameRegistry material_names("material");
   const std::vector<Section> material_sections = top.array_of_tables("materials", true);
   for (const Section& m : material_sections) {
-    problem.materials.push_back(read_material(m, thickness, problem.grid, problem.grid.cell_size / per_cell));
+    problem.materials.push_back(
+        read_material(m, thickness, problem.grid, problem.grid.cell_size / per_cell));
     material_names.add(m, problem.materials.back().name);
   }
 
@@ -390,8 +430,8 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
     if (is_grain_source(b)) {
       const int m = read_body_material(b, material_names);
       entry_names.add(b, b.name("name"));
-      grain_entries.push_back(read_grain_entry(b, path, m, problem.materials[static_cast<std::size_t>(m)],
-                                               problem.grid, per_cell));
+      grain_entries.push_back(read_grain_entry(
+          b, path, m, problem.materials[static_cast<std::size_t>(m)], problem.grid, per_cell));
       entry_order.emplace_back(true, grain_entries.size() - 1);
     } else {
       bodies.push_back(read_body(b, material_names));
@@ -401,17 +441,19 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   }
   std::vector<std::int32_t> shape_body_id(bodies.size()), grain_first_id(grain_entries.size());
   {
-    std::map<std::string, std::string> owner;  // body name -> entry name, for clashes with grain names
+    std::map<std::string, std::string>
+        owner;  // body name -> entry name, for clashes with grain names
     auto add_name = [&](const std::string& name, const Section& entry) {
       if (!owner.emplace(name, entry.path()).second)
-        entry.fail("name", "expected body names not used before, got body '" + name + "' also defined by " +
-                               owner[name]);
+        entry.fail("name", "expected body names not used before, got body '" + name +
+                               "' also defined by " + owner[name]);
       problem.body_names.push_back(name);
     };
     for (const auto& [grain, i] : entry_order) {
       if (grain) {
         grain_first_id[i] = static_cast<std::int32_t>(problem.body_names.size());
-        for (const std::string& n : grain_entries[i].body_names) add_name(n, grain_entries[i].section);
+        for (const std::string& n : grain_entries[i].body_names)
+          add_name(n, grain_entries[i].section);
       } else {
         shape_body_id[i] = static_cast<std::int32_t>(problem.body_names.size());
         add_name(bodies[i].name, bodies[i].section);
@@ -427,14 +469,18 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
     if (w.optional_string("kind") == std::optional<std::string>("thermal")) {
       // A plane that only carries a thermal condition: no force, not a platen, not in the series.
       if (!w.has("thermal"))
-        w.fail("thermal", "missing required key: a wall of kind = \"thermal\" exists only to carry thermal = { ... }");
-      if (w.has("friction")) w.fail("friction", "expected no friction for kind = \"thermal\" (it exerts no force)");
+        w.fail("thermal",
+               "missing required key: a wall of kind = \"thermal\" exists only to carry thermal = "
+               "{ ... }");
+      if (w.has("friction"))
+        w.fail("friction", "expected no friction for kind = \"thermal\" (it exerts no force)");
       if (wall_names.index(wall.name) >= 0) wall_names.add(w, wall.name);  // reports the duplicate
       thermal_plane_names.add(w, wall.name);
       wall_thermal.push_back(*read_wall_thermal(w, wall));
       continue;
     }
-    if (thermal_plane_names.index(wall.name) >= 0) thermal_plane_names.add(w, wall.name);  // duplicate
+    if (thermal_plane_names.index(wall.name) >= 0)
+      thermal_plane_names.add(w, wall.name);  // duplicate
     problem.walls.push_back(wall);
     wall_names.add(w, wall.name);
     if (auto c = read_wall_thermal(w, wall)) wall_thermal.push_back(*c);
@@ -445,7 +491,9 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   }
 
   if (!top.has("stop"))
-    top.fail("stop", "missing required table [stop]: expected at least one of end_time, max_steps, platen_displacement");
+    top.fail("stop",
+             "missing required table [stop]: expected at least one of end_time, max_steps, "
+             "platen_displacement");
   read_stop(top.table("stop"), wall_names, problem.walls, problem.stop);
   read_output(top.optional_table("output"), problem.stop, problem.output);
 
@@ -472,17 +520,20 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
     load_bodies[problem.body_names[b]].push_back(static_cast<std::int32_t>(b));
   for (std::size_t g = 0; g < grain_entries.size(); ++g)
     for (std::size_t k = 0; k < grain_entries[g].body_names.size(); ++k)
-      load_bodies[grain_entries[g].name].push_back(grain_first_id[g] + static_cast<std::int32_t>(k));
+      load_bodies[grain_entries[g].name].push_back(grain_first_id[g] +
+                                                   static_cast<std::int32_t>(k));
   const std::vector<Section> load_sections = top.array_of_tables("loads", false);
   for (std::size_t i = 0; i < load_sections.size(); ++i)
     if (is_heat_load(load_sections[i]))
-      problem.thermal.edge_loads.push_back(read_heat_load(load_sections[i], i, problem, load_bodies));
+      problem.thermal.edge_loads.push_back(
+          read_heat_load(load_sections[i], i, problem, load_bodies));
     else
       problem.loads.push_back(read_load(load_sections[i], i, problem, load_bodies));
   {
     std::vector<std::optional<double>> body_temperature(problem.body_names.size());
     for (std::size_t i = 0; i < bodies.size(); ++i)
-      body_temperature[static_cast<std::size_t>(shape_body_id[i])] = read_body_temperature(bodies[i].section);
+      body_temperature[static_cast<std::size_t>(shape_body_id[i])] =
+          read_body_temperature(bodies[i].section);
     for (std::size_t g = 0; g < grain_entries.size(); ++g)
       for (std::size_t k = 0; k < grain_entries[g].body_names.size(); ++k)
         body_temperature[static_cast<std::size_t>(grain_first_id[g]) + k] =
@@ -496,9 +547,11 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
 
 mpm::Problem<2> load_scene(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw SceneError(path, 0, "", "cannot read scene file: it is a directory");
+  if (std::filesystem::is_directory(path, ec))
+    throw SceneError(path, 0, "", "cannot read scene file: it is a directory");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path, 0, "", std::string("cannot open scene file: ") + std::strerror(errno));
+  if (!in)
+    throw SceneError(path, 0, "", std::string("cannot open scene file: ") + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw SceneError(path, 0, "", "cannot read scene file");

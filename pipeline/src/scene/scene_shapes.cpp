@@ -10,7 +10,9 @@
 namespace fragmpm::pipeline {
 namespace {
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// Sign of the turn a → b → c: +1 left, −1 right, 0 collinear.
 int orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
@@ -53,10 +55,13 @@ bool polygon_contains(const std::vector<Vec2>& v, const Vec2& p) {
 
 bool contains(const Shape& shape, const Vec2& p) {
   switch (shape.kind) {
-    case ShapeKind::disk: return (p - shape.center).squaredNorm() <= shape.radius * shape.radius;
+    case ShapeKind::disk:
+      return (p - shape.center).squaredNorm() <= shape.radius * shape.radius;
     case ShapeKind::box:
-      return p.x() >= shape.min.x() && p.x() <= shape.max.x() && p.y() >= shape.min.y() && p.y() <= shape.max.y();
-    case ShapeKind::polygon: return polygon_contains(shape.vertices, p);
+      return p.x() >= shape.min.x() && p.x() <= shape.max.x() && p.y() >= shape.min.y() &&
+             p.y() <= shape.max.y();
+    case ShapeKind::polygon:
+      return polygon_contains(shape.vertices, p);
   }
   return false;
 }
@@ -64,8 +69,10 @@ bool contains(const Shape& shape, const Vec2& p) {
 std::pair<Vec2, Vec2> bounding_box(const Shape& shape) {
   switch (shape.kind) {
     case ShapeKind::disk:
-      return {shape.center - Vec2::Constant(shape.radius), shape.center + Vec2::Constant(shape.radius)};
-    case ShapeKind::box: return {shape.min, shape.max};
+      return {shape.center - Vec2::Constant(shape.radius),
+              shape.center + Vec2::Constant(shape.radius)};
+    case ShapeKind::box:
+      return {shape.min, shape.max};
     case ShapeKind::polygon: {
       Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
       Vec2 hi = -lo;
@@ -105,15 +112,18 @@ std::pair<int, int> polygon_self_intersection(const std::vector<Vec2>& v) {
 }
 
 SampleResult sample_bodies(const std::vector<BodySample>& bodies,
-                           const std::vector<mpm::MaterialSpec>& materials, const mpm::GridSpec<2>& grid,
-                           int particles_per_cell, const std::vector<MirrorPlane>& mirrors) {
+                           const std::vector<mpm::MaterialSpec>& materials,
+                           const mpm::GridSpec<2>& grid, int particles_per_cell,
+                           const std::vector<MirrorPlane>& mirrors) {
   const double s = grid.cell_size / particles_per_cell;
   // Lattice points x = min + (i + 1/2) s inside the domain: i + 1/2 < L/s.
   std::int64_t n_lattice[2];
   for (int d = 0; d < 2; ++d)
-    n_lattice[d] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil((grid.max[d] - grid.min[d]) / s - 0.5)));
+    n_lattice[d] = std::max<std::int64_t>(
+        0, static_cast<std::int64_t>(std::ceil((grid.max[d] - grid.min[d]) / s - 0.5)));
   auto point = [&](std::int64_t i, std::int64_t j) {
-    return Vec2(grid.min.x() + (static_cast<double>(i) + 0.5) * s, grid.min.y() + (static_cast<double>(j) + 0.5) * s);
+    return Vec2(grid.min.x() + (static_cast<double>(i) + 0.5) * s,
+                grid.min.y() + (static_cast<double>(j) + 0.5) * s);
   };
   auto owner = [&](const Vec2& p, std::size_t up_to) -> std::ptrdiff_t {
     for (std::size_t b = 0; b < up_to; ++b)
@@ -136,9 +146,10 @@ SampleResult sample_bodies(const std::vector<BodySample>& bodies,
     const auto [lo, hi] = bounding_box(bodies[b].shape);
     std::int64_t first[2], last[2];
     for (int d = 0; d < 2; ++d) {
-      first[d] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil((lo[d] - grid.min[d]) / s - 0.5)));
-      last[d] = std::min<std::int64_t>(n_lattice[d] - 1,
-                                       static_cast<std::int64_t>(std::floor((hi[d] - grid.min[d]) / s - 0.5)));
+      first[d] = std::max<std::int64_t>(
+          0, static_cast<std::int64_t>(std::ceil((lo[d] - grid.min[d]) / s - 0.5)));
+      last[d] = std::min<std::int64_t>(
+          n_lattice[d] - 1, static_cast<std::int64_t>(std::floor((hi[d] - grid.min[d]) / s - 0.5)));
     }
     for (std::int64_t j = first[1]; j <= last[1]; ++j)
       for (std::int64_t i = first[0]; i <= last[0]; ++i) {
@@ -160,7 +171,8 @@ SampleResult sample_bodies(const std::vector<BodySample>& bodies,
   std::unordered_map<std::int64_t, std::int32_t> holder;
   holder.reserve(sites.size() * 2);
   auto key = [&](std::int64_t i, std::int64_t j) { return j * n_lattice[0] + i; };
-  for (std::size_t k = 0; k < sites.size(); ++k) holder.emplace(key(sites[k].i, sites[k].j), site_body[k]);
+  for (std::size_t k = 0; k < sites.size(); ++k)
+    holder.emplace(key(sites[k].i, sites[k].j), site_body[k]);
 
   mpm::Particles<2>& P = out.particles;
   P.resize(sites.size());
@@ -195,7 +207,8 @@ SampleResult sample_bodies(const std::vector<BodySample>& bodies,
           if (depth >= 0.0) continue;
           mirrored = true;
           const Vec2 image = q - 2.0 * depth * m.normal;
-          if (!contains(body.shape, image) || owner(image, static_cast<std::size_t>(b)) >= 0) surface = 1;
+          if (!contains(body.shape, image) || owner(image, static_cast<std::size_t>(b)) >= 0)
+            surface = 1;
           break;
         }
         if (mirrored) continue;
@@ -212,7 +225,8 @@ SampleResult sample_bodies(const std::vector<BodySample>& bodies,
   // Rigid initial motion about the centroid of each body's particles (equal masses within a body),
   // so the angular part carries no net momentum: v = v0 + ω e_z × (x − x_c).
   std::vector<Vec2> centroid(nb, Vec2::Zero());
-  for (std::size_t k = 0; k < sites.size(); ++k) centroid[static_cast<std::size_t>(site_body[k])] += P.x[k];
+  for (std::size_t k = 0; k < sites.size(); ++k)
+    centroid[static_cast<std::size_t>(site_body[k])] += P.x[k];
   for (std::size_t b = 0; b < nb; ++b)
     if (out.count[b] > 0) centroid[b] /= static_cast<double>(out.count[b]);
   for (std::size_t k = 0; k < sites.size(); ++k) {

@@ -18,9 +18,11 @@ const std::vector<std::string_view>& thermal_material_keys();
 std::optional<double> read_body_temperature(const Section& body);
 
 /// The `thermal = { … }` table of a [[walls]] entry, for wall index `wall`.
-std::optional<mpm::ThermalWallCondition<2>> read_wall_thermal(const Section& wall_section, const mpm::WallSpec<2>& wall);
+std::optional<mpm::ThermalWallCondition<2>> read_wall_thermal(const Section& wall_section,
+                                                              const mpm::WallSpec<2>& wall);
 
-/// `conductance`, `conductance_pressure`, `conductance_exponent` of [contact] ([XLS21] eq. (12)-(13)).
+/// `conductance`, `conductance_pressure`, `conductance_exponent` of [contact] ([XLS21] eq.
+/// (12)-(13)).
 void read_contact_conductance(const Section& contact, mpm::ThermalSpec<2>& thermal);
 
 /// Decides whether the thermal module runs and, if so, fills problem.thermal.materials (reason

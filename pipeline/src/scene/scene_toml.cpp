@@ -39,13 +39,15 @@ SceneError::SceneError(std::string file_, int line_, std::string key_, const std
 namespace scene_detail {
 namespace {
 
-int node_line(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
+int node_line(const toml::node& n) {
+  return static_cast<int>(n.source().begin.line);
+}
 
 std::string quantity_expectation(QuantityKind kind) {
   const std::string_view n = kind_name(kind);
   const bool vowel = n.find_first_of("aeiou") == 0;
-  return std::string(vowel ? "an " : "a ") + std::string(n) + " (a number in " + std::string(si_unit(kind)) +
-         " or a string with a unit)";
+  return std::string(vowel ? "an " : "a ") + std::string(n) + " (a number in " +
+         std::string(si_unit(kind)) + " or a string with a unit)";
 }
 
 /// Edit distance, for "did you mean" hints on misspelt keys.
@@ -98,13 +100,17 @@ std::string si(double value, std::string_view unit) {
 Section::Section(const toml::table& table, std::string path, const std::string& file)
     : table_(&table), path_(std::move(path)), file_(&file) {}
 
-int Section::line() const { return node_line(*table_); }
+int Section::line() const {
+  return node_line(*table_);
+}
 
 std::string Section::key(std::string_view k) const {
   return path_.empty() ? std::string(k) : path_ + "." + std::string(k);
 }
 
-const toml::node* Section::find(std::string_view k) const { return table_->get(k); }
+const toml::node* Section::find(std::string_view k) const {
+  return table_->get(k);
+}
 
 int Section::line_of(std::string_view k) const {
   const toml::node* n = find(k);
@@ -115,7 +121,9 @@ void Section::fail(std::string_view k, const std::string& detail) const {
   scene_detail::fail(*file_, line_of(k), key(k), detail);
 }
 
-void Section::fail_table(const std::string& detail) const { scene_detail::fail(*file_, line(), path_, detail); }
+void Section::fail_table(const std::string& detail) const {
+  scene_detail::fail(*file_, line(), path_, detail);
+}
 
 void Section::expected(std::string_view k, const std::string& what) const {
   const toml::node* n = find(k);
@@ -133,7 +141,8 @@ void Section::allow_only(const std::vector<std::string_view>& allowed) const {
     std::string list, hint;
     for (std::string_view a : allowed) {
       list += (list.empty() ? "" : ", ") + std::string(a);
-      if (hint.empty() && edit_distance(name, a) <= 2) hint = " (did you mean '" + std::string(a) + "'?)";
+      if (hint.empty() && edit_distance(name, a) <= 2)
+        hint = " (did you mean '" + std::string(a) + "'?)";
     }
     scene_detail::fail(*file_, static_cast<int>(k.source().begin.line), key(name),
                        "unknown key" + hint + ": expected one of " + list);
@@ -149,7 +158,8 @@ const toml::node& Section::require(std::string_view k) const {
 double Section::number_node(const toml::node& n, const std::string& k) const {
   if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
   if (const auto* f = n.as_floating_point()) {
-    if (!std::isfinite(f->get())) scene_detail::fail(*file_, node_line(n), k, "expected a finite number, got " + describe(n));
+    if (!std::isfinite(f->get()))
+      scene_detail::fail(*file_, node_line(n), k, "expected a finite number, got " + describe(n));
     return f->get();
   }
   scene_detail::fail(*file_, node_line(n), k, "expected a number, got " + describe(n));
@@ -164,18 +174,22 @@ double Section::quantity_node(const toml::node& n, const std::string& k, Quantit
       scene_detail::fail(*file_, node_line(n), k, e.what());
     }
   }
-  scene_detail::fail(*file_, node_line(n), k, "expected " + quantity_expectation(kind) + ", got " + describe(n));
+  scene_detail::fail(*file_, node_line(n), k,
+                     "expected " + quantity_expectation(kind) + ", got " + describe(n));
 }
 
-Vec2 Section::vector_node(const toml::node& n, const std::string& k, std::optional<QuantityKind> kind) const {
+Vec2 Section::vector_node(const toml::node& n, const std::string& k,
+                          std::optional<QuantityKind> kind) const {
   const auto* a = n.as_array();
   const std::string what = kind ? quantity_expectation(*kind) : std::string("a number");
   if (!a || a->size() != 2)
-    scene_detail::fail(*file_, node_line(n), k, "expected an array of 2 components, each " + what + ", got " + describe(n));
+    scene_detail::fail(*file_, node_line(n), k,
+                       "expected an array of 2 components, each " + what + ", got " + describe(n));
   Vec2 out;
   for (std::size_t d = 0; d < 2; ++d) {
     const std::string ek = k + "[" + std::to_string(d) + "]";
-    out[static_cast<int>(d)] = kind ? quantity_node(*a->get(d), ek, *kind) : number_node(*a->get(d), ek);
+    out[static_cast<int>(d)] =
+        kind ? quantity_node(*a->get(d), ek, *kind) : number_node(*a->get(d), ek);
   }
   return out;
 }
@@ -215,7 +229,8 @@ std::optional<long long> Section::optional_integer(std::string_view k) const {
   if (const auto* i = n->as_integer()) return i->get();
   if (const auto* f = n->as_floating_point()) {
     const double v = f->get();
-    if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 9e18) return static_cast<long long>(v);
+    if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 9e18)
+      return static_cast<long long>(v);
   }
   expected(k, "an integer");
 }
@@ -248,7 +263,8 @@ Vec2 Section::vector(std::string_view k, std::optional<QuantityKind> kind) const
   return vector_node(*n, key(k), kind);
 }
 
-std::optional<Vec2> Section::optional_vector(std::string_view k, std::optional<QuantityKind> kind) const {
+std::optional<Vec2> Section::optional_vector(std::string_view k,
+                                             std::optional<QuantityKind> kind) const {
   const toml::node* n = find(k);
   if (!n) return std::nullopt;
   return vector_node(*n, key(k), kind);
@@ -257,7 +273,8 @@ std::optional<Vec2> Section::optional_vector(std::string_view k, std::optional<Q
 std::vector<Vec2> Section::point_list(std::string_view k, QuantityKind kind) const {
   const toml::node& n = require(k);
   const auto* a = n.as_array();
-  if (!a) expected(k, "an array of points [[x, y], ...], each coordinate " + quantity_expectation(kind));
+  if (!a)
+    expected(k, "an array of points [[x, y], ...], each coordinate " + quantity_expectation(kind));
   std::vector<Vec2> out;
   for (std::size_t i = 0; i < a->size(); ++i)
     out.push_back(vector_node(*a->get(i), key(k) + "[" + std::to_string(i) + "]", kind));
@@ -304,7 +321,8 @@ std::vector<Section> Section::array_of_tables(std::string_view k, bool required)
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::node& e = *a->get(i);
     const std::string path = key(k) + "[" + std::to_string(i) + "]";
-    if (!e.is_table()) scene_detail::fail(*file_, node_line(e), path, "expected a table, got " + describe(e));
+    if (!e.is_table())
+      scene_detail::fail(*file_, node_line(e), path, "expected a table, got " + describe(e));
     out.emplace_back(*e.as_table(), path, *file_);
   }
   return out;

@@ -1,13 +1,13 @@
 #pragma once
 // Private to the scene compiler: typed, unit-aware reading of TOML tables with errors that name
 // file, line, key and what was expected.
+#include <toml++/toml.h>
+
 #include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <toml++/toml.h>
 
 #include "fragmpm/mpm/types.hpp"
 #include "fragmpm/pipeline/units.hpp"
@@ -17,7 +17,8 @@ namespace fragmpm::pipeline::scene_detail {
 using Vec2 = mpm::Vec<2>;
 
 /// Throws SceneError(file, line, key, detail).
-[[noreturn]] void fail(const std::string& file, int line, const std::string& key, const std::string& detail);
+[[noreturn]] void fail(const std::string& file, int line, const std::string& key,
+                       const std::string& detail);
 
 /// How a TOML value is shown after "got": strings quoted, numbers as written, "an array of 3
 /// elements", "a table".
@@ -55,7 +56,8 @@ class Section {
   std::optional<double> optional_quantity(std::string_view k, QuantityKind kind) const;
   double number(std::string_view k) const;  ///< dimensionless TOML number (integer or float)
   std::optional<double> optional_number(std::string_view k) const;
-  long long integer(std::string_view k) const;  ///< integer (a float with an integral value is accepted)
+  long long integer(
+      std::string_view k) const;  ///< integer (a float with an integral value is accepted)
   std::optional<long long> optional_integer(std::string_view k) const;
   std::string string(std::string_view k) const;
   std::optional<std::string> optional_string(std::string_view k) const;
@@ -78,7 +80,8 @@ class Section {
   const toml::node& require(std::string_view k) const;
   double quantity_node(const toml::node& n, const std::string& key, QuantityKind kind) const;
   double number_node(const toml::node& n, const std::string& key) const;
-  Vec2 vector_node(const toml::node& n, const std::string& key, std::optional<QuantityKind> kind) const;
+  Vec2 vector_node(const toml::node& n, const std::string& key,
+                   std::optional<QuantityKind> kind) const;
 
   const toml::table* table_;
   std::string path_;

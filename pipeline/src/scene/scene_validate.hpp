@@ -20,12 +20,14 @@ struct BodyEntry {
 /// The key whose value sets the body's extent ("radius", "max", "vertices").
 std::string_view size_key(ShapeKind kind);
 
-/// Error when any part of the shape's bounding box lies outside [grid.min, grid.max], saying by how much.
+/// Error when any part of the shape's bounding box lies outside [grid.min, grid.max], saying by how
+/// much.
 void check_body_in_domain(const BodyEntry& body, const mpm::GridSpec<2>& grid);
 
 /// Error for a body without particles (smaller than the spacing s, or hidden by earlier bodies);
 /// warnings on stderr for overlapping bodies.
-void check_sampling(const std::vector<BodyEntry>& bodies, const SampleResult& result, double spacing);
+void check_sampling(const std::vector<BodyEntry>& bodies, const SampleResult& result,
+                    double spacing);
 
 /// Error when a fixed Δt exceeds the stability limit at C_cfl = 1 (docs/design.md "Time step").
 void check_fixed_dt(const mpm::Problem<2>& problem, const Section& time);

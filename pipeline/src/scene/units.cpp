@@ -1,5 +1,5 @@
-// Quantity strings → SI numbers (docs/design.md). A small hand-written reader: units are products of
-// prefixed symbols with integer powers, tracked as exponents of the base dimensions so that any
+// Quantity strings → SI numbers (docs/design.md). A small hand-written reader: units are products
+// of prefixed symbols with integer powers, tracked as exponents of the base dimensions so that any
 // spelling of a unit of the right kind is accepted ("kg/m3", "g/cm3", "g cm^-3").
 #include "fragmpm/pipeline/units.hpp"
 
@@ -20,7 +20,9 @@ namespace {
 using Dims = std::array<int, 5>;
 constexpr int L = 0, M = 1, T = 2, TH = 3, A = 4;
 
-Dims dims(int l, int m, int t, int th = 0, int a = 0) { return {l, m, t, th, a}; }
+Dims dims(int l, int m, int t, int th = 0, int a = 0) {
+  return {l, m, t, th, a};
+}
 
 struct Unit {
   double scale = 1.0;  ///< SI value of one of this unit
@@ -86,37 +88,67 @@ std::optional<double> prefix_scale(std::string_view p) {
 
 Dims kind_dims(QuantityKind k) {
   switch (k) {
-    case QuantityKind::length: return dims(1, 0, 0);
-    case QuantityKind::time: return dims(0, 0, 1);
-    case QuantityKind::mass: return dims(0, 1, 0);
-    case QuantityKind::density: return dims(-3, 1, 0);
-    case QuantityKind::pressure: return dims(-1, 1, -2);
-    case QuantityKind::velocity: return dims(1, 0, -1);
-    case QuantityKind::acceleration: return dims(1, 0, -2);
-    case QuantityKind::frequency: return dims(0, 0, -1);
-    case QuantityKind::angle: return dims(0, 0, 0, 0, 1);
-    case QuantityKind::angular_velocity: return dims(0, 0, -1, 0, 1);
-    case QuantityKind::temperature: return dims(0, 0, 0, 1);
-    case QuantityKind::energy_per_area: return dims(0, 1, -2);
-    case QuantityKind::specific_heat: return dims(2, 0, -2, -1);
-    case QuantityKind::conductivity: return dims(1, 1, -3, -1);
-    case QuantityKind::expansion: return dims(0, 0, 0, -1);
-    case QuantityKind::volume: return dims(3, 0, 0);
-    case QuantityKind::inverse_velocity: return dims(-1, 0, 1);
-    case QuantityKind::heat_flux: return dims(0, 1, -3);
-    case QuantityKind::film_coefficient: return dims(0, 1, -3, -1);
+    case QuantityKind::length:
+      return dims(1, 0, 0);
+    case QuantityKind::time:
+      return dims(0, 0, 1);
+    case QuantityKind::mass:
+      return dims(0, 1, 0);
+    case QuantityKind::density:
+      return dims(-3, 1, 0);
+    case QuantityKind::pressure:
+      return dims(-1, 1, -2);
+    case QuantityKind::velocity:
+      return dims(1, 0, -1);
+    case QuantityKind::acceleration:
+      return dims(1, 0, -2);
+    case QuantityKind::frequency:
+      return dims(0, 0, -1);
+    case QuantityKind::angle:
+      return dims(0, 0, 0, 0, 1);
+    case QuantityKind::angular_velocity:
+      return dims(0, 0, -1, 0, 1);
+    case QuantityKind::temperature:
+      return dims(0, 0, 0, 1);
+    case QuantityKind::energy_per_area:
+      return dims(0, 1, -2);
+    case QuantityKind::specific_heat:
+      return dims(2, 0, -2, -1);
+    case QuantityKind::conductivity:
+      return dims(1, 1, -3, -1);
+    case QuantityKind::expansion:
+      return dims(0, 0, 0, -1);
+    case QuantityKind::volume:
+      return dims(3, 0, 0);
+    case QuantityKind::inverse_velocity:
+      return dims(-1, 0, 1);
+    case QuantityKind::heat_flux:
+      return dims(0, 1, -3);
+    case QuantityKind::film_coefficient:
+      return dims(0, 1, -3, -1);
   }
   return {};
 }
 
-constexpr std::array<QuantityKind, 19> kAllKinds = {
-    QuantityKind::length,          QuantityKind::time,          QuantityKind::mass,
-    QuantityKind::density,         QuantityKind::pressure,      QuantityKind::velocity,
-    QuantityKind::acceleration,    QuantityKind::frequency,     QuantityKind::angle,
-    QuantityKind::angular_velocity, QuantityKind::temperature,  QuantityKind::energy_per_area,
-    QuantityKind::specific_heat,   QuantityKind::conductivity,  QuantityKind::expansion,
-    QuantityKind::volume,          QuantityKind::inverse_velocity, QuantityKind::heat_flux,
-    QuantityKind::film_coefficient};
+constexpr std::array<QuantityKind, 19> kAllKinds = {QuantityKind::length,
+                                                    QuantityKind::time,
+                                                    QuantityKind::mass,
+                                                    QuantityKind::density,
+                                                    QuantityKind::pressure,
+                                                    QuantityKind::velocity,
+                                                    QuantityKind::acceleration,
+                                                    QuantityKind::frequency,
+                                                    QuantityKind::angle,
+                                                    QuantityKind::angular_velocity,
+                                                    QuantityKind::temperature,
+                                                    QuantityKind::energy_per_area,
+                                                    QuantityKind::specific_heat,
+                                                    QuantityKind::conductivity,
+                                                    QuantityKind::expansion,
+                                                    QuantityKind::volume,
+                                                    QuantityKind::inverse_velocity,
+                                                    QuantityKind::heat_flux,
+                                                    QuantityKind::film_coefficient};
 
 /// "a length" / "kg m^-1 s^-2" — how a found unit is described in an error.
 std::string describe_dims(const Dims& d) {
@@ -142,25 +174,44 @@ std::string describe_dims(const Dims& d) {
 
 std::string_view example(QuantityKind kind) {
   switch (kind) {
-    case QuantityKind::length: return "0.5 mm";
-    case QuantityKind::time: return "250 us";
-    case QuantityKind::mass: return "2 g";
-    case QuantityKind::density: return "2.3 g/cm3";
-    case QuantityKind::pressure: return "50 GPa";
-    case QuantityKind::velocity: return "10 m/s";
-    case QuantityKind::acceleration: return "9.81 m/s2";
-    case QuantityKind::frequency: return "1 kHz";
-    case QuantityKind::angle: return "90 deg";
-    case QuantityKind::angular_velocity: return "10 rad/s";
-    case QuantityKind::temperature: return "800 C";
-    case QuantityKind::energy_per_area: return "20 J/m2";
-    case QuantityKind::specific_heat: return "800 J/(kg K)";
-    case QuantityKind::conductivity: return "1.5 W/(m K)";
-    case QuantityKind::expansion: return "8e-6 1/K";
-    case QuantityKind::volume: return "1 mm3";
-    case QuantityKind::inverse_velocity: return "0.1 s/m";
-    case QuantityKind::heat_flux: return "1 MW/m2";
-    case QuantityKind::film_coefficient: return "10 W/(m2 K)";
+    case QuantityKind::length:
+      return "0.5 mm";
+    case QuantityKind::time:
+      return "250 us";
+    case QuantityKind::mass:
+      return "2 g";
+    case QuantityKind::density:
+      return "2.3 g/cm3";
+    case QuantityKind::pressure:
+      return "50 GPa";
+    case QuantityKind::velocity:
+      return "10 m/s";
+    case QuantityKind::acceleration:
+      return "9.81 m/s2";
+    case QuantityKind::frequency:
+      return "1 kHz";
+    case QuantityKind::angle:
+      return "90 deg";
+    case QuantityKind::angular_velocity:
+      return "10 rad/s";
+    case QuantityKind::temperature:
+      return "800 C";
+    case QuantityKind::energy_per_area:
+      return "20 J/m2";
+    case QuantityKind::specific_heat:
+      return "800 J/(kg K)";
+    case QuantityKind::conductivity:
+      return "1.5 W/(m K)";
+    case QuantityKind::expansion:
+      return "8e-6 1/K";
+    case QuantityKind::volume:
+      return "1 mm3";
+    case QuantityKind::inverse_velocity:
+      return "0.1 s/m";
+    case QuantityKind::heat_flux:
+      return "1 MW/m2";
+    case QuantityKind::film_coefficient:
+      return "10 W/(m2 K)";
   }
   return "";
 }
@@ -188,9 +239,7 @@ class UnitReader {
   std::string context_;
   std::size_t pos_ = 0;
 
-  [[noreturn]] void fail(const std::string& why) const {
-    throw UnitError(context_ + ": " + why);
-  }
+  [[noreturn]] void fail(const std::string& why) const { throw UnitError(context_ + ": " + why); }
 
   bool skip_space() {
     const std::size_t start = pos_;
@@ -256,7 +305,11 @@ class UnitReader {
     while (pos_ < s_.size() && std::isalpha(static_cast<unsigned char>(s_[pos_]))) ++pos_;
     const std::string_view name = s_.substr(start, pos_ - start);
     if (name.empty()) fail("expected a unit symbol at '" + std::string(s_.substr(start)) + "'");
-    if (name == "C" || name == "\xC2\xB0" "C" || name == "degC")
+    if (name == "C" ||
+        name ==
+            "\xC2\xB0"
+            "C" ||
+        name == "degC")
       fail("degrees Celsius are an offset scale and cannot be combined with other units; write K");
     Unit u = resolve(name);
     return power(u, exponent());
@@ -272,17 +325,33 @@ class UnitReader {
       if (p && u) return Unit{*p * u->scale, u->d};
     }
     fail("unknown unit '" + std::string(name) +
-         "' (known: m, g, s, K, C, Pa, bar, N, J, W, Hz, rad, deg with prefixes p n u m c d k M G T)");
+         "' (known: m, g, s, K, C, Pa, bar, N, J, W, Hz, rad, deg with prefixes p n u m c d k M G "
+         "T)");
   }
 
   int exponent() {
-    if (at("\xC2\xB2")) { pos_ += 2; return 2; }
-    if (at("\xC2\xB3")) { pos_ += 2; return 3; }
+    if (at("\xC2\xB2")) {
+      pos_ += 2;
+      return 2;
+    }
+    if (at("\xC2\xB3")) {
+      pos_ += 2;
+      return 3;
+    }
     if (at("\xE2\x81\xBB")) {  // superscript minus followed by ¹ ² ³
       pos_ += 3;
-      if (at("\xC2\xB9")) { pos_ += 2; return -1; }
-      if (at("\xC2\xB2")) { pos_ += 2; return -2; }
-      if (at("\xC2\xB3")) { pos_ += 2; return -3; }
+      if (at("\xC2\xB9")) {
+        pos_ += 2;
+        return -1;
+      }
+      if (at("\xC2\xB2")) {
+        pos_ += 2;
+        return -2;
+      }
+      if (at("\xC2\xB3")) {
+        pos_ += 2;
+        return -3;
+      }
       fail("expected a superscript digit after '⁻'");
     }
     std::size_t p = pos_;
@@ -315,50 +384,88 @@ std::string_view trim(std::string_view s) {
 
 std::string_view kind_name(QuantityKind kind) {
   switch (kind) {
-    case QuantityKind::length: return "length";
-    case QuantityKind::time: return "time";
-    case QuantityKind::mass: return "mass";
-    case QuantityKind::density: return "density";
-    case QuantityKind::pressure: return "pressure";
-    case QuantityKind::velocity: return "velocity";
-    case QuantityKind::acceleration: return "acceleration";
-    case QuantityKind::frequency: return "frequency";
-    case QuantityKind::angle: return "angle";
-    case QuantityKind::angular_velocity: return "angular velocity";
-    case QuantityKind::temperature: return "temperature";
-    case QuantityKind::energy_per_area: return "energy per area";
-    case QuantityKind::specific_heat: return "specific heat";
-    case QuantityKind::conductivity: return "thermal conductivity";
-    case QuantityKind::expansion: return "thermal expansion coefficient";
-    case QuantityKind::volume: return "volume";
-    case QuantityKind::inverse_velocity: return "inverse velocity";
-    case QuantityKind::heat_flux: return "heat flux";
-    case QuantityKind::film_coefficient: return "heat transfer coefficient";
+    case QuantityKind::length:
+      return "length";
+    case QuantityKind::time:
+      return "time";
+    case QuantityKind::mass:
+      return "mass";
+    case QuantityKind::density:
+      return "density";
+    case QuantityKind::pressure:
+      return "pressure";
+    case QuantityKind::velocity:
+      return "velocity";
+    case QuantityKind::acceleration:
+      return "acceleration";
+    case QuantityKind::frequency:
+      return "frequency";
+    case QuantityKind::angle:
+      return "angle";
+    case QuantityKind::angular_velocity:
+      return "angular velocity";
+    case QuantityKind::temperature:
+      return "temperature";
+    case QuantityKind::energy_per_area:
+      return "energy per area";
+    case QuantityKind::specific_heat:
+      return "specific heat";
+    case QuantityKind::conductivity:
+      return "thermal conductivity";
+    case QuantityKind::expansion:
+      return "thermal expansion coefficient";
+    case QuantityKind::volume:
+      return "volume";
+    case QuantityKind::inverse_velocity:
+      return "inverse velocity";
+    case QuantityKind::heat_flux:
+      return "heat flux";
+    case QuantityKind::film_coefficient:
+      return "heat transfer coefficient";
   }
   return "quantity";
 }
 
 std::string_view si_unit(QuantityKind kind) {
   switch (kind) {
-    case QuantityKind::length: return "m";
-    case QuantityKind::time: return "s";
-    case QuantityKind::mass: return "kg";
-    case QuantityKind::density: return "kg/m3";
-    case QuantityKind::pressure: return "Pa";
-    case QuantityKind::velocity: return "m/s";
-    case QuantityKind::acceleration: return "m/s2";
-    case QuantityKind::frequency: return "Hz";
-    case QuantityKind::angle: return "rad";
-    case QuantityKind::angular_velocity: return "rad/s";
-    case QuantityKind::temperature: return "K";
-    case QuantityKind::energy_per_area: return "J/m2";
-    case QuantityKind::specific_heat: return "J/(kg K)";
-    case QuantityKind::conductivity: return "W/(m K)";
-    case QuantityKind::expansion: return "1/K";
-    case QuantityKind::volume: return "m3";
-    case QuantityKind::inverse_velocity: return "s/m";
-    case QuantityKind::heat_flux: return "W/m2";
-    case QuantityKind::film_coefficient: return "W/(m2 K)";
+    case QuantityKind::length:
+      return "m";
+    case QuantityKind::time:
+      return "s";
+    case QuantityKind::mass:
+      return "kg";
+    case QuantityKind::density:
+      return "kg/m3";
+    case QuantityKind::pressure:
+      return "Pa";
+    case QuantityKind::velocity:
+      return "m/s";
+    case QuantityKind::acceleration:
+      return "m/s2";
+    case QuantityKind::frequency:
+      return "Hz";
+    case QuantityKind::angle:
+      return "rad";
+    case QuantityKind::angular_velocity:
+      return "rad/s";
+    case QuantityKind::temperature:
+      return "K";
+    case QuantityKind::energy_per_area:
+      return "J/m2";
+    case QuantityKind::specific_heat:
+      return "J/(kg K)";
+    case QuantityKind::conductivity:
+      return "W/(m K)";
+    case QuantityKind::expansion:
+      return "1/K";
+    case QuantityKind::volume:
+      return "m3";
+    case QuantityKind::inverse_velocity:
+      return "s/m";
+    case QuantityKind::heat_flux:
+      return "W/m2";
+    case QuantityKind::film_coefficient:
+      return "W/(m2 K)";
   }
   return "";
 }
@@ -370,21 +477,30 @@ double parse_quantity(std::string_view text, QuantityKind kind) {
   double value = 0.0;
   const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), value);
   if (ec != std::errc() || end == rest.data())
-    throw UnitError(expected_text(kind) + ", got \"" + std::string(text) + "\", which does not start with a number");
+    throw UnitError(expected_text(kind) + ", got \"" + std::string(text) +
+                    "\", which does not start with a number");
   if (!std::isfinite(value))
-    throw UnitError(expected_text(kind) + ", got \"" + std::string(text) + "\", which is not a finite number");
+    throw UnitError(expected_text(kind) + ", got \"" + std::string(text) +
+                    "\", which is not a finite number");
   const std::string_view unit_text = trim(rest.substr(static_cast<std::size_t>(end - rest.data())));
   if (unit_text.empty()) return value;  // bare number: SI
 
   // Celsius is affine, so it is only accepted on its own: θ[K] = θ[°C] + 273.15.
-  if (unit_text == "C" || unit_text == "\xC2\xB0" "C" || unit_text == "degC") {
+  if (unit_text == "C" ||
+      unit_text ==
+          "\xC2\xB0"
+          "C" ||
+      unit_text == "degC") {
     if (kind != QuantityKind::temperature)
-      throw UnitError(expected_text(kind) + ", got \"" + std::string(text) + "\", which is a temperature");
+      throw UnitError(expected_text(kind) + ", got \"" + std::string(text) +
+                      "\", which is a temperature");
     return value + 273.15;
   }
-  const Unit u = UnitReader(unit_text, expected_text(kind) + ", got \"" + std::string(text) + "\"").read();
+  const Unit u =
+      UnitReader(unit_text, expected_text(kind) + ", got \"" + std::string(text) + "\"").read();
   if (u.d != kind_dims(kind))
-    throw UnitError(expected_text(kind) + ", got \"" + std::string(text) + "\", which is " + describe_dims(u.d));
+    throw UnitError(expected_text(kind) + ", got \"" + std::string(text) + "\", which is " +
+                    describe_dims(u.d));
   return value * u.scale;
 }
 

@@ -1,11 +1,11 @@
 #include "fragmpm/pipeline/segment.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
-#include <utility>
-
-#include <fmt/format.h>
 #include <opencv2/core.hpp>
+#include <utility>
 
 #include "fragmpm/pipeline/segment_mask_input.hpp"
 #include "fragmpm/pipeline/segment_threshold.hpp"
@@ -17,10 +17,14 @@ namespace {
 
 const char* method_name(ThresholdMethod m) {
   switch (m) {
-    case ThresholdMethod::otsu: return "otsu";
-    case ThresholdMethod::triangle: return "triangle";
-    case ThresholdMethod::adaptive: return "adaptive";
-    case ThresholdMethod::fixed: return "fixed";
+    case ThresholdMethod::otsu:
+      return "otsu";
+    case ThresholdMethod::triangle:
+      return "triangle";
+    case ThresholdMethod::adaptive:
+      return "adaptive";
+    case ThresholdMethod::fixed:
+      return "fixed";
   }
   return "?";
 }
@@ -35,26 +39,32 @@ double image_level(const WorkingImage& w, double working) {
 
 void validate_segment_options(const SegmentOptions& o) {
   if (!(o.pixel_size > 0.0) || !std::isfinite(o.pixel_size))
-    throw SegmentInputError(fmt::format("--pixel-size must be a positive length, got {} m", o.pixel_size));
+    throw SegmentInputError(
+        fmt::format("--pixel-size must be a positive length, got {} m", o.pixel_size));
   if (o.min_area < 0)
     throw SegmentInputError(fmt::format("--min-area must be ≥ 0 pixels, got {}", o.min_area));
   for (std::size_t k = 1; k < o.phase_bands.size(); ++k)
     if (!(o.phase_bands[k] > o.phase_bands[k - 1]))
-      throw SegmentInputError(fmt::format(
-          "--phase-bands must be strictly ascending grey levels, got {} after {}", o.phase_bands[k],
-          o.phase_bands[k - 1]));
+      throw SegmentInputError(
+          fmt::format("--phase-bands must be strictly ascending grey levels, got {} after {}",
+                      o.phase_bands[k], o.phase_bands[k - 1]));
   if (o.preprocess.denoise != DenoiseMethod::none && o.preprocess.denoise_radius < 1)
-    throw SegmentInputError(fmt::format("--denoise-radius must be ≥ 1 pixel, got {}", o.preprocess.denoise_radius));
+    throw SegmentInputError(
+        fmt::format("--denoise-radius must be ≥ 1 pixel, got {}", o.preprocess.denoise_radius));
   if (o.cleanup.open_radius < 0 || o.cleanup.close_radius < 0)
     throw SegmentInputError("--open and --close radii must be ≥ 0 pixels");
   if (o.cleanup.max_hole_area < 0)
-    throw SegmentInputError(fmt::format("--max-hole-area must be ≥ 0 pixels, got {}", o.cleanup.max_hole_area));
+    throw SegmentInputError(
+        fmt::format("--max-hole-area must be ≥ 0 pixels, got {}", o.cleanup.max_hole_area));
   if (o.split.enabled && !(o.split.marker_spacing >= 1.0))
-    throw SegmentInputError(fmt::format("--marker-spacing must be ≥ 1 pixel, got {}", o.split.marker_spacing));
+    throw SegmentInputError(
+        fmt::format("--marker-spacing must be ≥ 1 pixel, got {}", o.split.marker_spacing));
   if (!(o.split.neck_ratio >= 0.0 && o.split.neck_ratio <= 1.0))
-    throw SegmentInputError(fmt::format("--neck-ratio must lie in [0, 1], got {}", o.split.neck_ratio));
+    throw SegmentInputError(
+        fmt::format("--neck-ratio must lie in [0, 1], got {}", o.split.neck_ratio));
   if (o.preprocess.gap_radius < 0)
-    throw SegmentInputError(fmt::format("--gaps must be ≥ 0 pixels, got {}", o.preprocess.gap_radius));
+    throw SegmentInputError(
+        fmt::format("--gaps must be ≥ 0 pixels, got {}", o.preprocess.gap_radius));
   if (o.preprocess.gap_radius > 0 && o.threshold.method == ThresholdMethod::fixed)
     throw SegmentInputError(
         "--level (fixed threshold) cannot be combined with --gaps: the gap image no longer has the "
@@ -80,20 +90,26 @@ Segmentation segment(LoadedImage input, const SegmentOptions& options) {
       const WorkingImage work = working_image(input.grey, options.preprocess);
       const ThresholdResult thr = threshold_grains(work, options.threshold, name);
       // With gap detection the level is on the gap image's own 0–255 scale.
-      if (!std::isnan(thr.level)) s.threshold_level = work.gaps ? thr.level : image_level(work, thr.level);
+      if (!std::isnan(thr.level))
+        s.threshold_level = work.gaps ? thr.level : image_level(work, thr.level);
       const cv::Mat mask = clean_mask(thr.mask, options.cleanup);
       const std::string how =
           std::isnan(thr.level)
-              ? fmt::format("adaptive threshold, block {} px, offset {}", options.threshold.adaptive_block,
-                            options.threshold.adaptive_offset)
-              : fmt::format("{} threshold at {} level {:.6g}", method_name(options.threshold.method),
-                            work.gaps ? "gap-image" : "grey", s.threshold_level);
+              ? fmt::format("adaptive threshold, block {} px, offset {}",
+                            options.threshold.adaptive_block, options.threshold.adaptive_offset)
+              : fmt::format("{} threshold at {} level {:.6g}",
+                            method_name(options.threshold.method), work.gaps ? "gap-image" : "grey",
+                            s.threshold_level);
       check_mask_has_both(mask, name, how);
       labels = split_touching_grains(mask, options.split);
       break;
     }
-    case InputKind::classes: labels = labels_from_classes(input.grey, options.classes, name); break;
-    case InputKind::labels: labels = labels_from_label_image(input.grey, name); break;
+    case InputKind::classes:
+      labels = labels_from_classes(input.grey, options.classes, name);
+      break;
+    case InputKind::labels:
+      labels = labels_from_label_image(input.grey, name);
+      break;
   }
   if (options.cleanup.fill_holes) fill_enclosed_holes(labels);
   // Small grains go before growing, or every speck would grow into a grain.
@@ -114,16 +130,18 @@ Segmentation segment(LoadedImage input, const SegmentOptions& options) {
     throw SegmentInputError(fmt::format(
         "{}: no grains left: {} smaller than --min-area {} px{}", name, s.table.dropped_small,
         options.min_area,
-        options.drop_border ? fmt::format(", {} cut by the image border (--drop-border)", s.table.dropped_border)
-                            : std::string()));
+        options.drop_border
+            ? fmt::format(", {} cut by the image border (--drop-border)", s.table.dropped_border)
+            : std::string()));
   s.input = std::move(input);
   return s;
 }
 
 Segmentation segment(const cv::Mat& image, const SegmentOptions& options) {
   validate_segment_options(options);
-  return segment(prepare_image(image, options.image_path.empty() ? "image" : options.image_path, options.crop),
-                 options);
+  return segment(
+      prepare_image(image, options.image_path.empty() ? "image" : options.image_path, options.crop),
+      options);
 }
 
 Segmentation segment(const SegmentOptions& options) {

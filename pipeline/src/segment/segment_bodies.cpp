@@ -10,13 +10,14 @@ namespace fragmpm::pipeline {
 namespace {
 
 GrainBodies make_bodies(const cv::Mat& labels, std::vector<Grain> grains, double pixel_size,
-                        const ParticleSampling& sampling, const std::vector<double>& density_of_phase,
-                        const std::string& source) {
+                        const ParticleSampling& sampling,
+                        const std::vector<double>& density_of_phase, const std::string& source) {
   std::vector<std::int32_t> material(grains.size() + 1, 0);
   for (const Grain& g : grains) {
     if (g.phase < 0 || static_cast<std::size_t>(g.phase) >= density_of_phase.size())
-      throw SegmentInputError(fmt::format("{}: grain {} is phase {} but densities are given for {} phase(s)",
-                                          source, g.label, g.phase, density_of_phase.size()));
+      throw SegmentInputError(
+          fmt::format("{}: grain {} is phase {} but densities are given for {} phase(s)", source,
+                      g.label, g.phase, density_of_phase.size()));
     material[static_cast<std::size_t>(g.label)] = g.phase;
   }
   GrainBodies b;
@@ -34,8 +35,8 @@ GrainBodies make_bodies(const cv::Mat& labels, std::vector<Grain> grains, double
 GrainBodies grain_bodies_from_image(const SegmentOptions& options, const ParticleSampling& sampling,
                                     const std::vector<double>& density_of_phase) {
   Segmentation s = segment(options);
-  return make_bodies(s.table.labels, std::move(s.table.grains), s.pixel_size, sampling, density_of_phase,
-                     s.input.path);
+  return make_bodies(s.table.labels, std::move(s.table.grains), s.pixel_size, sampling,
+                     density_of_phase, s.input.path);
 }
 
 GrainBodies grain_bodies_from_file(const std::string& path, const ParticleSampling& sampling,

@@ -6,13 +6,15 @@
 namespace fragmpm::pipeline {
 
 std::int32_t phase_of(double mean_grey, const std::vector<double>& bands) {
-  return static_cast<std::int32_t>(std::upper_bound(bands.begin(), bands.end(), mean_grey) - bands.begin());
+  return static_cast<std::int32_t>(std::upper_bound(bands.begin(), bands.end(), mean_grey) -
+                                   bands.begin());
 }
 
 GrainTable measure_grains(const cv::Mat& raw_labels, const cv::Mat& grey, double pixel_size,
                           std::int64_t min_area, bool drop_border,
                           const std::vector<double>& phase_bands) {
-  const std::vector<analysis::LabelRegion> regions = analysis::label_region_shapes(raw_labels, pixel_size);
+  const std::vector<analysis::LabelRegion> regions =
+      analysis::label_region_shapes(raw_labels, pixel_size);
   GrainTable table;
   std::unordered_map<std::int32_t, std::int32_t> new_label;  // old label -> new label, 0 = dropped
   for (const analysis::LabelRegion& r : regions) {

@@ -1,9 +1,9 @@
 #include "fragmpm/pipeline/segment_image.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -22,9 +22,9 @@ LoadedImage prepare_image(const cv::Mat& image, const std::string& name,
   if (image.empty())
     throw SegmentInputError(fmt::format("{}: the image is empty (0 pixels)", name));
   if (image.dims != 2 || image.rows < 2 || image.cols < 2)
-    throw SegmentInputError(fmt::format(
-        "{}: the image is {} × {} pixels; need at least 2 × 2 pixels to find grains", name,
-        image.cols, image.rows));
+    throw SegmentInputError(
+        fmt::format("{}: the image is {} × {} pixels; need at least 2 × 2 pixels to find grains",
+                    name, image.cols, image.rows));
   LoadedImage out;
   out.path = name;
   out.full_size = image.size();
@@ -35,9 +35,9 @@ LoadedImage prepare_image(const cv::Mat& image, const std::string& name,
       throw SegmentInputError(fmt::format(
           "{}: crop window {} (x,y,w,h) must be at least 2 × 2 pixels", name, rect_text(c)));
     if (c.x < 0 || c.y < 0 || c.x + c.width > image.cols || c.y + c.height > image.rows)
-      throw SegmentInputError(fmt::format(
-          "{}: crop window {} (x,y,w,h) is not inside the image of {} × {} pixels", name,
-          rect_text(c), image.cols, image.rows));
+      throw SegmentInputError(
+          fmt::format("{}: crop window {} (x,y,w,h) is not inside the image of {} × {} pixels",
+                      name, rect_text(c), image.cols, image.rows));
     out.window = c;
   }
   out.image = image(out.window).clone();
@@ -49,8 +49,7 @@ LoadedImage load_image(const std::string& path, const std::optional<cv::Rect>& c
   namespace fs = std::filesystem;
   std::error_code ec;
   if (path.empty()) throw SegmentInputError("no image file given");
-  if (!fs::exists(path, ec))
-    throw SegmentInputError(fmt::format("{}: no such file", path));
+  if (!fs::exists(path, ec)) throw SegmentInputError(fmt::format("{}: no such file", path));
   if (!fs::is_regular_file(path, ec))
     throw SegmentInputError(fmt::format("{}: not a regular file", path));
   if (std::ifstream probe(path, std::ios::binary); !probe.good())
@@ -76,10 +75,18 @@ LoadedImage load_image(const std::string& path, const std::optional<cv::Rect>& c
 cv::Mat to_grey(const cv::Mat& image) {
   cv::Mat grey;
   switch (image.channels()) {
-    case 1: grey = image.clone(); break;
-    case 3: cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY); break;
-    case 4: cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY); break;
-    default: cv::extractChannel(image, grey, 0); break;  // grey + alpha: keep the grey channel
+    case 1:
+      grey = image.clone();
+      break;
+    case 3:
+      cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+      break;
+    case 4:
+      cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY);
+      break;
+    default:
+      cv::extractChannel(image, grey, 0);
+      break;  // grey + alpha: keep the grey channel
   }
   return grey;
 }
@@ -107,8 +114,11 @@ WorkingImage working_image(const cv::Mat& grey, const PreprocessOptions& options
   }
   const int r = std::max(1, options.denoise_radius);
   switch (options.denoise) {
-    case DenoiseMethod::none: break;
-    case DenoiseMethod::median: cv::medianBlur(w.image, w.image, 2 * r + 1); break;
+    case DenoiseMethod::none:
+      break;
+    case DenoiseMethod::median:
+      cv::medianBlur(w.image, w.image, 2 * r + 1);
+      break;
     case DenoiseMethod::gaussian:
       cv::GaussianBlur(w.image, w.image, cv::Size(0, 0), static_cast<double>(r));
       break;

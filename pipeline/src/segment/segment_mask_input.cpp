@@ -1,13 +1,13 @@
 #include "fragmpm/pipeline/segment_mask_input.hpp"
 
-#include <algorithm>
-#include <cstdint>
-#include <set>
-#include <vector>
-
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cstdint>
 #include <opencv2/imgproc.hpp>
+#include <set>
+#include <vector>
 
 #include "fragmpm/pipeline/segment_threshold.hpp"
 #include "fragmpm/pipeline/segment_watershed.hpp"
@@ -31,7 +31,8 @@ cv::Mat membership(const cv::Mat& values, const std::vector<int>& classes) {
 std::string value_list(const cv::Mat& values) {
   std::set<std::int32_t> seen;
   for (int r = 0; r < values.rows && seen.size() <= 10; ++r)
-    for (int c = 0; c < values.cols && seen.size() <= 10; ++c) seen.insert(values.at<std::int32_t>(r, c));
+    for (int c = 0; c < values.cols && seen.size() <= 10; ++c)
+      seen.insert(values.at<std::int32_t>(r, c));
   std::vector<std::int32_t> v(seen.begin(), seen.end());
   if (v.size() > 10) {
     v.resize(10);
@@ -57,7 +58,8 @@ cv::Mat labels_from_classes(const cv::Mat& classes, const ClassMaskOptions& opti
     throw SegmentInputError(fmt::format(
         "{}: no pixel has a grain class ({}); the mask holds the values {} — is this a class mask?",
         name, fmt::join(options.grain_classes, ", "), value_list(values)));
-  check_mask_has_both(grain, name, fmt::format("grain classes {}", fmt::join(options.grain_classes, ", ")));
+  check_mask_has_both(grain, name,
+                      fmt::format("grain classes {}", fmt::join(options.grain_classes, ", ")));
   cv::Mat labels = connected_labels(grain);
   if (options.boundary_to_grains && !options.boundary_classes.empty()) {
     const cv::Mat boundary = membership(values, options.boundary_classes);
@@ -70,7 +72,8 @@ cv::Mat labels_from_label_image(const cv::Mat& image, const std::string& name) {
   const cv::Mat values = as_int32(image);
   const int rows = values.rows, cols = values.cols;
   if (cv::countNonZero(values) == 0)
-    throw SegmentInputError(fmt::format("{}: every pixel is 0; a label image needs non-zero grain labels", name));
+    throw SegmentInputError(
+        fmt::format("{}: every pixel is 0; a label image needs non-zero grain labels", name));
   double lo = 0.0, hi = 0.0;
   cv::minMaxLoc(values, &lo, &hi);
   if (lo == hi)
@@ -93,7 +96,8 @@ cv::Mat labels_from_label_image(const cv::Mat& image, const std::string& name) {
         const int nr[4] = {r - 1, r + 1, r, r}, nc[4] = {c, c, c - 1, c + 1};
         for (int k = 0; k < 4; ++k) {
           if (nr[k] < 0 || nc[k] < 0 || nr[k] >= rows || nc[k] >= cols) continue;
-          if (values.at<std::int32_t>(nr[k], nc[k]) != v || labels.at<std::int32_t>(nr[k], nc[k]) != 0)
+          if (values.at<std::int32_t>(nr[k], nc[k]) != v ||
+              labels.at<std::int32_t>(nr[k], nc[k]) != 0)
             continue;
           labels.at<std::int32_t>(nr[k], nc[k]) = next;
           stack.push_back(nr[k] * cols + nc[k]);

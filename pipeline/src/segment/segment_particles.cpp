@@ -1,9 +1,9 @@
 #include "fragmpm/pipeline/segment_particles.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "fragmpm/pipeline/segment_options.hpp"
 
@@ -18,9 +18,11 @@ mpm::Particles<2> particles_from_labels(const cv::Mat& labels, double pixel_size
   if (!(pixel_size > 0.0))
     throw SegmentInputError(fmt::format("pixel size must be positive, got {} m", pixel_size));
   if (!(sampling.cell_size > 0.0) || !std::isfinite(sampling.cell_size))
-    throw SegmentInputError(fmt::format("cell size must be positive, got {} m", sampling.cell_size));
+    throw SegmentInputError(
+        fmt::format("cell size must be positive, got {} m", sampling.cell_size));
   if (sampling.particles_per_cell < 1)
-    throw SegmentInputError(fmt::format("particles per cell must be ≥ 1, got {}", sampling.particles_per_cell));
+    throw SegmentInputError(
+        fmt::format("particles per cell must be ≥ 1, got {}", sampling.particles_per_cell));
   const double a = sampling.cell_size / sampling.particles_per_cell;
   if (a < 0.01 * pixel_size)
     throw SegmentInputError(fmt::format(
@@ -36,7 +38,8 @@ mpm::Particles<2> particles_from_labels(const cv::Mat& labels, double pixel_size
   std::vector<std::int32_t> lattice(static_cast<std::size_t>(nx) * ny, 0);
   for (int j = 0; j < ny; ++j) {
     const double y = (j + 0.5) * a;
-    const int row = std::clamp(rows - 1 - static_cast<int>(std::floor(y / pixel_size)), 0, rows - 1);
+    const int row =
+        std::clamp(rows - 1 - static_cast<int>(std::floor(y / pixel_size)), 0, rows - 1);
     const auto* lrow = labels.ptr<std::int32_t>(row);
     for (int i = 0; i < nx; ++i) {
       const double x = (i + 0.5) * a;
@@ -59,12 +62,14 @@ mpm::Particles<2> particles_from_labels(const cv::Mat& labels, double pixel_size
       const std::int32_t l = label_at(i, j);
       if (l <= 0) continue;
       if (static_cast<std::size_t>(l) >= material_of_label.size())
-        throw SegmentInputError(fmt::format("grain label {} has no material (material list covers labels < {})",
-                                            l, material_of_label.size()));
+        throw SegmentInputError(
+            fmt::format("grain label {} has no material (material list covers labels < {})", l,
+                        material_of_label.size()));
       const std::int32_t m = material_of_label[static_cast<std::size_t>(l)];
       if (m < 0 || static_cast<std::size_t>(m) >= density_of_material.size())
-        throw SegmentInputError(fmt::format("grain {} has material {} but densities are given for {} material(s)",
-                                            l, m, density_of_material.size()));
+        throw SegmentInputError(
+            fmt::format("grain {} has material {} but densities are given for {} material(s)", l, m,
+                        density_of_material.size()));
       bool surface = false;
       for (int dj = -1; dj <= 1 && !surface; ++dj)
         for (int di = -1; di <= 1 && !surface; ++di)

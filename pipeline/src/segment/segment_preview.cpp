@@ -1,13 +1,13 @@
 #include "fragmpm/pipeline/segment_preview.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <vector>
-
-#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 namespace fragmpm::pipeline {
 
@@ -30,9 +30,15 @@ cv::Mat display_background(const Segmentation& s) {
   }
   cv::Mat bgr;
   switch (eight.channels()) {
-    case 1: cv::cvtColor(eight, bgr, cv::COLOR_GRAY2BGR); break;
-    case 4: cv::cvtColor(eight, bgr, cv::COLOR_BGRA2BGR); break;
-    case 3: bgr = eight.clone(); break;
+    case 1:
+      cv::cvtColor(eight, bgr, cv::COLOR_GRAY2BGR);
+      break;
+    case 4:
+      cv::cvtColor(eight, bgr, cv::COLOR_BGRA2BGR);
+      break;
+    case 3:
+      bgr = eight.clone();
+      break;
     default: {
       cv::Mat first;
       cv::extractChannel(eight, first, 0);
@@ -110,8 +116,10 @@ cv::Mat draw_preview(const Segmentation& s) {
     const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, weight, &baseline);
     const cv::Point at(static_cast<int>(std::lround(g.centroid_col)) - size.width / 2,
                        static_cast<int>(std::lround(g.centroid_row)) + size.height / 2);
-    cv::putText(canvas, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), weight + 2, cv::LINE_AA);
-    cv::putText(canvas, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255), weight, cv::LINE_AA);
+    cv::putText(canvas, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), weight + 2,
+                cv::LINE_AA);
+    cv::putText(canvas, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255),
+                weight, cv::LINE_AA);
   }
 
   // Caption strip.
@@ -119,11 +127,13 @@ cv::Mat draw_preview(const Segmentation& s) {
   for (const Grain& g : s.table.grains) d.push_back(g.shape.equivalent_diameter);
   std::sort(d.begin(), d.end());
   const double median_um = d.empty() ? 0.0 : 1e6 * d[d.size() / 2];
-  std::vector<std::string> lines{fmt::format("{} grains, median equivalent diameter {:.4g} um, pixel {:.4g} um",
-                                             s.table.grains.size(), median_um, 1e6 * s.pixel_size)};
+  std::vector<std::string> lines{
+      fmt::format("{} grains, median equivalent diameter {:.4g} um, pixel {:.4g} um",
+                  s.table.grains.size(), median_um, 1e6 * s.pixel_size)};
   if (s.table.dropped_small + s.table.dropped_border > 0)
-    lines.push_back(fmt::format("red: dropped grains ({} under the minimum area, {} cut by the border)",
-                                s.table.dropped_small, s.table.dropped_border));
+    lines.push_back(
+        fmt::format("red: dropped grains ({} under the minimum area, {} cut by the border)",
+                    s.table.dropped_small, s.table.dropped_border));
   // Text scaled with the image, shrunk until the widest line fits.
   double scale = std::clamp(cols / 1400.0, 0.3, 1.5);
   auto widest = [&](double sc) {
@@ -139,9 +149,10 @@ cv::Mat draw_preview(const Segmentation& s) {
   canvas.copyTo(out(cv::Rect(0, 0, cols, rows)));
   for (std::size_t k = 0; k < lines.size(); ++k)
     cv::putText(out, lines[k],
-                cv::Point(6, rows + static_cast<int>(k + 1) * line_height - static_cast<int>(std::lround(6 * scale))),
-                cv::FONT_HERSHEY_SIMPLEX, scale, k == 0 ? cv::Scalar(255, 255, 255) : cv::Scalar(120, 120, 255), 1,
-                cv::LINE_AA);
+                cv::Point(6, rows + static_cast<int>(k + 1) * line_height -
+                                 static_cast<int>(std::lround(6 * scale))),
+                cv::FONT_HERSHEY_SIMPLEX, scale,
+                k == 0 ? cv::Scalar(255, 255, 255) : cv::Scalar(120, 120, 255), 1, cv::LINE_AA);
   return out;
 }
 
@@ -154,7 +165,8 @@ void write_preview(const cv::Mat& preview, const std::string& path) {
   }
   if (!ok)
     throw SegmentInputError(fmt::format(
-        "{}: cannot write the preview (is the folder there and writable, and the extension .png?)", path));
+        "{}: cannot write the preview (is the folder there and writable, and the extension .png?)",
+        path));
 }
 
 }  // namespace fragmpm::pipeline

@@ -5,9 +5,8 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
-#include <random>
-
 #include <opencv2/core.hpp>
+#include <random>
 
 namespace fragmpm::pipeline {
 
@@ -23,7 +22,8 @@ struct Shape {
 };
 
 SyntheticImage render(const std::string& name, const std::vector<Shape>& shapes,
-                      std::vector<SyntheticGrain> grains, const std::vector<int>& grey, int background) {
+                      std::vector<SyntheticGrain> grains, const std::vector<int>& grey,
+                      int background) {
   SyntheticImage s;
   s.name = name;
   s.image = cv::Mat(kHeight, kWidth, CV_8U, cv::Scalar(background));
@@ -65,7 +65,8 @@ SyntheticImage synthetic_disks() {
     shapes.push_back(disk(cx, cy, r));
     grains.push_back({cx, cy, std::numbers::pi * r * r, 0});
   }
-  return render("disks", shapes, grains, std::vector<int>(12, kSyntheticGrain), kSyntheticBackground);
+  return render("disks", shapes, grains, std::vector<int>(12, kSyntheticGrain),
+                kSyntheticBackground);
 }
 
 SyntheticImage synthetic_irregular(std::uint32_t seed) {
@@ -75,7 +76,8 @@ SyntheticImage synthetic_irregular(std::uint32_t seed) {
   std::vector<Shape> shapes;
   std::vector<SyntheticGrain> grains;
   for (int k = 0; k < 12; ++k) {
-    const double cx = 80.0 + 160.0 * (k % 4) + jitter(rng), cy = 80.0 + 160.0 * (k / 4) + jitter(rng);
+    const double cx = 80.0 + 160.0 * (k % 4) + jitter(rng),
+                 cy = 80.0 + 160.0 * (k / 4) + jitter(rng);
     const double r0 = radius(rng);
     std::array<double, 3> a{}, phi{};
     double sum_sq = 0.0;
@@ -86,7 +88,8 @@ SyntheticImage synthetic_irregular(std::uint32_t seed) {
     }
     auto rho = [=](double theta) {
       double f = 1.0;
-      for (std::size_t m = 0; m < 3; ++m) f += a[m] * std::cos(static_cast<double>(m + 2) * theta + phi[m]);
+      for (std::size_t m = 0; m < 3; ++m)
+        f += a[m] * std::cos(static_cast<double>(m + 2) * theta + phi[m]);
       return r0 * f;
     };
     const double rmax = r0 * 1.25;
@@ -99,7 +102,8 @@ SyntheticImage synthetic_irregular(std::uint32_t seed) {
     // ½ ∫ r² dθ with the cross terms of distinct harmonics integrating to zero.
     grains.push_back({cx, cy, std::numbers::pi * r0 * r0 * (1.0 + 0.5 * sum_sq), 0});
   }
-  return render("irregular", shapes, grains, std::vector<int>(12, kSyntheticGrain), kSyntheticBackground);
+  return render("irregular", shapes, grains, std::vector<int>(12, kSyntheticGrain),
+                kSyntheticBackground);
 }
 
 SyntheticImage synthetic_touching_pairs() {
@@ -121,19 +125,26 @@ SyntheticImage synthetic_touching_pairs() {
     const double x1 = cx - 0.5 * d * ux, y1 = cy - 0.5 * d * uy;
     const double x2 = cx + 0.5 * d * ux, y2 = cy + 0.5 * d * uy;
     // Split along the radical axis: a point belongs to the disk of smaller power |p − c|² − r².
-    auto power1 = [=](double x, double y) { return (x - x1) * (x - x1) + (y - y1) * (y - y1) - r1 * r1; };
-    auto power2 = [=](double x, double y) { return (x - x2) * (x - x2) + (y - y2) * (y - y2) - r2 * r2; };
+    auto power1 = [=](double x, double y) {
+      return (x - x1) * (x - x1) + (y - y1) * (y - y1) - r1 * r1;
+    };
+    auto power2 = [=](double x, double y) {
+      return (x - x2) * (x - x2) + (y - y2) * (y - y2) - r2 * r2;
+    };
     Shape s1 = disk(x1, y1, r1), s2 = disk(x2, y2, r2);
-    shapes.push_back({[=](double x, double y) { return power1(x, y) < 0.0 && power1(x, y) <= power2(x, y); },
-                      s1.bounds});
-    shapes.push_back({[=](double x, double y) { return power2(x, y) < 0.0 && power2(x, y) < power1(x, y); },
-                      s2.bounds});
+    shapes.push_back(
+        {[=](double x, double y) { return power1(x, y) < 0.0 && power1(x, y) <= power2(x, y); },
+         s1.bounds});
+    shapes.push_back(
+        {[=](double x, double y) { return power2(x, y) < 0.0 && power2(x, y) < power1(x, y); },
+         s2.bounds});
     const double a1 = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);  // chord distance from centre 1
     const double a2 = d - a1;
     grains.push_back({x1, y1, std::numbers::pi * r1 * r1 - segment_area(r1, a1), 0});
     grains.push_back({x2, y2, std::numbers::pi * r2 * r2 - segment_area(r2, a2), 0});
   }
-  return render("touching_pairs", shapes, grains, std::vector<int>(12, kSyntheticGrain), kSyntheticBackground);
+  return render("touching_pairs", shapes, grains, std::vector<int>(12, kSyntheticGrain),
+                kSyntheticBackground);
 }
 
 SyntheticImage synthetic_border_disks() {
@@ -184,10 +195,12 @@ void add_gaussian_noise(cv::Mat& image, double sigma, std::uint32_t seed) {
     for (int c = 0; c < image.cols; ++c) {
       if (image.depth() == CV_16U) {
         auto& v = image.at<std::uint16_t>(r, c);
-        v = static_cast<std::uint16_t>(std::clamp(std::lround(v + noise(rng)), 0L, static_cast<long>(top)));
+        v = static_cast<std::uint16_t>(
+            std::clamp(std::lround(v + noise(rng)), 0L, static_cast<long>(top)));
       } else {
         auto& v = image.at<unsigned char>(r, c);
-        v = static_cast<unsigned char>(std::clamp(std::lround(v + noise(rng)), 0L, static_cast<long>(top)));
+        v = static_cast<unsigned char>(
+            std::clamp(std::lround(v + noise(rng)), 0L, static_cast<long>(top)));
       }
     }
 }

@@ -1,9 +1,9 @@
 #include "fragmpm/pipeline/segment_threshold.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
-
-#include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
 namespace fragmpm::pipeline {
@@ -21,8 +21,8 @@ ThresholdResult threshold_grains(const WorkingImage& work, const ThresholdOption
   double lo = 0.0, hi = 0.0;
   cv::minMaxLoc(work.image, &lo, &hi);
   if (lo == hi)
-    throw SegmentInputError(fmt::format(
-        "{}: every pixel has the same grey level; there is nothing to segment", name));
+    throw SegmentInputError(
+        fmt::format("{}: every pixel has the same grey level; there is nothing to segment", name));
   ThresholdResult out;
   switch (options.method) {
     case ThresholdMethod::otsu:
@@ -40,8 +40,9 @@ ThresholdResult threshold_grains(const WorkingImage& work, const ThresholdOption
     case ThresholdMethod::adaptive: {
       const int block = options.adaptive_block;
       if (block < 3 || block % 2 == 0)
-        throw SegmentInputError(fmt::format(
-            "{}: adaptive threshold block must be an odd number of pixels ≥ 3, got {}", name, block));
+        throw SegmentInputError(
+            fmt::format("{}: adaptive threshold block must be an odd number of pixels ≥ 3, got {}",
+                        name, block));
       // dst = src > local mean − C with C = offset.
       cv::adaptiveThreshold(work.image, out.mask, 255, cv::ADAPTIVE_THRESH_MEAN_C,
                             cv::THRESH_BINARY, block, options.adaptive_offset);
@@ -54,7 +55,8 @@ ThresholdResult threshold_grains(const WorkingImage& work, const ThresholdOption
 
 cv::Mat clean_mask(const cv::Mat& mask, const CleanupOptions& options) {
   cv::Mat out = mask.clone();
-  if (options.open_radius > 0) cv::morphologyEx(out, out, cv::MORPH_OPEN, disk(options.open_radius));
+  if (options.open_radius > 0)
+    cv::morphologyEx(out, out, cv::MORPH_OPEN, disk(options.open_radius));
   if (options.close_radius > 0)
     cv::morphologyEx(out, out, cv::MORPH_CLOSE, disk(options.close_radius));
   if (options.max_hole_area > 0) {

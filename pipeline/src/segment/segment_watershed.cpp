@@ -4,12 +4,11 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <opencv2/imgproc.hpp>
 #include <queue>
 #include <unordered_map>
 #include <utility>
 #include <vector>
-
-#include <opencv2/imgproc.hpp>
 
 namespace fragmpm::pipeline {
 
@@ -25,7 +24,8 @@ struct UnionFind {
   }
   int find(int a) {
     while (parent[static_cast<std::size_t>(a)] != a) {
-      parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+      parent[static_cast<std::size_t>(a)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
       a = parent[static_cast<std::size_t>(a)];
     }
     return a;
@@ -65,7 +65,8 @@ cv::Mat flood_labels(const cv::Mat& seeds, const cv::Mat& allowed, const cv::Mat
   const bool by_height = !height.empty();
   struct Entry {
     float priority;
-    std::uint64_t order;  // FIFO among equal priorities keeps the flood deterministic and breadth-first
+    std::uint64_t
+        order;  // FIFO among equal priorities keeps the flood deterministic and breadth-first
     int index;
   };
   auto lower = [](const Entry& a, const Entry& b) {
@@ -104,8 +105,9 @@ cv::Mat split_touching_grains(const cv::Mat& mask, const SplitOptions& options) 
   // Markers: plateaus of pixels that are the maximum of the distance map within the spacing radius.
   const int radius = std::max(1, static_cast<int>(std::lround(options.marker_spacing)));
   cv::Mat dilated;
-  cv::dilate(dist, dilated,
-             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
+  cv::dilate(
+      dist, dilated,
+      cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
   cv::Mat peaks = (dist >= dilated) & fg;
   cv::Mat seeds;
   cv::connectedComponents(peaks, seeds, 8, CV_32S);
@@ -157,7 +159,8 @@ cv::Mat split_touching_grains(const cv::Mat& mask, const SplitOptions& options) 
   std::vector<Edge> edges;
   edges.reserve(saddle.size());
   for (const auto& [k, s] : saddle)
-    edges.push_back({static_cast<std::int32_t>(k >> 32), static_cast<std::int32_t>(k & 0xffffffffu), s});
+    edges.push_back(
+        {static_cast<std::int32_t>(k >> 32), static_cast<std::int32_t>(k & 0xffffffffu), s});
   // Highest necks first, so every edge examined is the highest remaining link between two groups
   // (as in a component tree); ties broken by labels for determinism.
   std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) {
@@ -206,8 +209,10 @@ void fill_enclosed_holes(cv::Mat& labels) {
       for (int d = 0; d < 4; ++d) {
         const std::int32_t l = labels.at<std::int32_t>(r + kDr[d], c + kDc[d]);
         if (l == 0) continue;
-        if (o == 0) o = l;
-        else if (o != l) o = -1;
+        if (o == 0)
+          o = l;
+        else if (o != l)
+          o = -1;
       }
     }
   }
@@ -224,7 +229,8 @@ std::int64_t remove_small_grains(cv::Mat& labels, std::int64_t min_area, cv::Mat
   std::vector<std::int64_t> count(static_cast<std::size_t>(max_label) + 1, 0);
   for (int r = 0; r < labels.rows; ++r)
     for (int c = 0; c < labels.cols; ++c)
-      if (const std::int32_t l = labels.at<std::int32_t>(r, c); l > 0) ++count[static_cast<std::size_t>(l)];
+      if (const std::int32_t l = labels.at<std::int32_t>(r, c); l > 0)
+        ++count[static_cast<std::size_t>(l)];
   std::int64_t dropped = 0;
   for (std::size_t l = 1; l < count.size(); ++l) dropped += count[l] > 0 && count[l] < min_area;
   for (int r = 0; r < labels.rows; ++r)

@@ -22,15 +22,16 @@ struct BilletRun {
 };
 
 BilletRun run_billet(double cell_size, const std::string& partitioning) {
-  const std::string text = with_overrides(
-      embedded_scene("verify/billet.toml"),
-      {{"grid.cell_size", toml_number(cell_size)},
-       {"contact.partitioning", "\"" + partitioning + "\""},
-       {"output.interval", "0.0"}});
+  const std::string text = with_overrides(embedded_scene("verify/billet.toml"),
+                                          {{"grid.cell_size", toml_number(cell_size)},
+                                           {"contact.partitioning", "\"" + partitioning + "\""},
+                                           {"output.interval", "0.0"}});
   BilletRun run;
   run.solver = std::make_unique<mpm::Solver<2>>(parse_scene(text, "scenes/verify/billet.toml"));
   const double end_time = run.solver->problem().stop.end_time;
-  run.timing = run_until(*run.solver, end_time, "billet " + partitioning + " " + cell_label(cell_size), 0.0, [](const mpm::Solver<2>&) {});
+  run.timing =
+      run_until(*run.solver, end_time, "billet " + partitioning + " " + cell_label(cell_size), 0.0,
+                [](const mpm::Solver<2>&) {});
   for (const auto& v : run.solver->particles().v) run.horizontal_velocity.push_back(v[0]);
   return run;
 }
@@ -38,8 +39,8 @@ BilletRun run_billet(double cell_size, const std::string& partitioning) {
 }  // namespace
 
 std::vector<VerifyRow> verify_billet(const VerifyOptions& options) {
-  const std::vector<double> cells = options.quick ? std::vector<double>{50e-6}
-                                                  : std::vector<double>{50e-6, 25e-6};
+  const std::vector<double> cells =
+      options.quick ? std::vector<double>{50e-6} : std::vector<double>{50e-6, 25e-6};
   std::vector<VerifyRow> rows;
   for (std::size_t level = 0; level < cells.size(); ++level) {
     const BilletRun bodies = run_billet(cells[level], "bodies");
@@ -60,11 +61,15 @@ std::vector<VerifyRow> verify_billet(const VerifyOptions& options) {
       r.value = largest / peak;
       r.reference = 0.0;
       r.error = r.value;
-      // P2 in docs/verification.md: self-contact within 5 % of the peak; the single field must differ clearly.
-      if (variant == "auto") r.target_high = 0.05;
-      else r.target_low = 0.05;
+      // P2 in docs/verification.md: self-contact within 5 % of the peak; the single field must
+      // differ clearly.
+      if (variant == "auto")
+        r.target_high = 0.05;
+      else
+        r.target_low = 0.05;
       rows.push_back(r);
-      // Where the largest difference is local (a corner), the RMS says how much of the field agrees.
+      // Where the largest difference is local (a corner), the RMS says how much of the field
+      // agrees.
       VerifyRow mean = r;
       mean.metric = "rms|vx - vx_two_body|/max|vx_two_body|";
       mean.value = rms / peak;

@@ -22,10 +22,10 @@ namespace fragmpm::pipeline {
 
 namespace {
 
-constexpr double step_position = 0.020;  // x_step [m]
-constexpr double temperature_jump = 100.0;  // Δθ [K]
+constexpr double step_position = 0.020;                     // x_step [m]
+constexpr double temperature_jump = 100.0;                  // Δθ [K]
 const std::vector<double> comparison_times = {1e-3, 4e-3};  // [s] since the step
-constexpr double start_time = 0.25e-3;  // t₀ [s]
+constexpr double start_time = 0.25e-3;                      // t₀ [s]
 
 std::vector<VerifyRow> run_conduction_level(int level, double cell_size) {
   const std::string text =
@@ -34,9 +34,11 @@ std::vector<VerifyRow> run_conduction_level(int level, double cell_size) {
   mpm::Problem<2> problem = parse_scene(text, "scenes/verify/conduction.toml");
   const mpm::ThermalMaterial& slab = problem.thermal.materials.at(0);
   const double left = problem.particles.temperature.at(0);
-  const double diffusivity = slab.conductivity / (problem.materials[0].density * slab.specific_heat);
+  const double diffusivity =
+      slab.conductivity / (problem.materials[0].density * slab.specific_heat);
   auto exact = [&](double x, double t) {
-    return left + 0.5 * temperature_jump * std::erfc(-(x - step_position) / (2.0 * std::sqrt(diffusivity * t)));
+    return left + 0.5 * temperature_jump *
+                      std::erfc(-(x - step_position) / (2.0 * std::sqrt(diffusivity * t)));
   };
   for (std::size_t p = 0; p < problem.particles.size(); ++p)
     problem.particles.temperature[p] = exact(problem.particles.x[p][0], start_time);
@@ -44,21 +46,23 @@ std::vector<VerifyRow> run_conduction_level(int level, double cell_size) {
   mpm::Solver<2> solver(std::move(problem));
   std::map<double, double> worst;  // comparison time -> largest |θ_p − θ| / Δθ
   const double interval = comparison_times.front() - start_time;  // 0.75 ms: hits 1 ms and 4 ms
-  const TimedRun run = run_until(solver, comparison_times.back() - start_time, "conduction", interval,
-                                 [&](const mpm::Solver<2>& s) {
-                                   const double now = s.time() + start_time;
-                                   for (double t : comparison_times)
-                                     if (std::abs(now - t) <= 1e-9 * t) {
-                                       const auto& P = s.particles();
-                                       double e = 0.0;
-                                       for (std::size_t p = 0; p < P.size(); ++p)
-                                         e = std::max(e, std::abs(P.temperature[p] - exact(P.x[p][0], now)));
-                                       worst[t] = e / temperature_jump;
-                                     }
-                                 });
+  const TimedRun run =
+      run_until(solver, comparison_times.back() - start_time, "conduction", interval,
+                [&](const mpm::Solver<2>& s) {
+                  const double now = s.time() + start_time;
+                  for (double t : comparison_times)
+                    if (std::abs(now - t) <= 1e-9 * t) {
+                      const auto& P = s.particles();
+                      double e = 0.0;
+                      for (std::size_t p = 0; p < P.size(); ++p)
+                        e = std::max(e, std::abs(P.temperature[p] - exact(P.x[p][0], now)));
+                      worst[t] = e / temperature_jump;
+                    }
+                });
   std::vector<VerifyRow> rows;
   for (double t : comparison_times) {
-    if (!worst.count(t)) throw std::runtime_error("conduction: no state at t = " + std::to_string(t) + " s");
+    if (!worst.count(t))
+      throw std::runtime_error("conduction: no state at t = " + std::to_string(t) + " s");
     VerifyRow r = level_row("conduction", "cpdi", level, cell_size, solver, run);
     r.metric = "max_error/step_t" + std::to_string(static_cast<int>(std::lround(t * 1e3))) + "ms";
     r.value = worst[t];
@@ -72,11 +76,13 @@ std::vector<VerifyRow> run_conduction_level(int level, double cell_size) {
 }  // namespace
 
 std::vector<VerifyRow> verify_conduction(const VerifyOptions& options) {
-  const std::vector<double> cells = options.quick ? std::vector<double>{1e-3, 5e-4, 2.5e-4}
-                                                  : std::vector<double>{1e-3, 5e-4, 2.5e-4, 1.25e-4};
+  const std::vector<double> cells = options.quick
+                                        ? std::vector<double>{1e-3, 5e-4, 2.5e-4}
+                                        : std::vector<double>{1e-3, 5e-4, 2.5e-4, 1.25e-4};
   std::vector<VerifyRow> rows;
   for (std::size_t l = 0; l < cells.size(); ++l)
-    for (VerifyRow& r : run_conduction_level(static_cast<int>(l), cells[l])) rows.push_back(std::move(r));
+    for (VerifyRow& r : run_conduction_level(static_cast<int>(l), cells[l]))
+      rows.push_back(std::move(r));
   return rows;
 }
 

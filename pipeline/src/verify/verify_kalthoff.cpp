@@ -1,6 +1,6 @@
-// P1: Kalthoff–Winkler ([XLS21] §4.3; [HH17] §3.2). Metrics: the crack angle against the notch direction
-// (published 59° ([HH17]), ~67° ([XLS21]), 70° experiment; target 58-72°) and the crack speed ([HH17]:
-// 2.0 km/s; target 1.6-2.4 km/s).
+// P1: Kalthoff–Winkler ([XLS21] §4.3; [HH17] §3.2). Metrics: the crack angle against the notch
+// direction (published 59° ([HH17]), ~67° ([XLS21]), 70° experiment; target 58-72°) and the crack
+// speed ([HH17]: 2.0 km/s; target 1.6-2.4 km/s).
 //
 // The crack is the set of fully damaged plate particles ahead of and above the notch tip. Its
 // direction is the principal axis, through the tip, of those particles 3-30 mm from the tip at the
@@ -66,9 +66,11 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
   mpm::Solver<2> solver(parse_scene(text, "scenes/verify/kalthoff.toml"));
   std::vector<Sample> samples;
   const double end_time = solver.problem().stop.end_time;
-  const TimedRun timing = run_until(solver, end_time, "kalthoff " + variant + " " + cell_label(cell_size), 1e-6, [&](const mpm::Solver<2>& s) {
-    samples.push_back({s.time(), cracked_particles(s.particles())});
-  });
+  const TimedRun timing =
+      run_until(solver, end_time, "kalthoff " + variant + " " + cell_label(cell_size), 1e-6,
+                [&](const mpm::Solver<2>& s) {
+                  samples.push_back({s.time(), cracked_particles(s.particles())});
+                });
   const mpm::Vec<2> axis = crack_direction(samples.back().cracked);
   std::vector<VerifyRow> rows;
   VerifyRow angle = level_row("kalthoff", variant, level, cell_size, solver, timing);
@@ -99,7 +101,8 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
     }
     // [HH17] §3.2 quotes the speed over 40 µs < t < 50 µs (after Belytschko et al.); the crack then
     // slows as it turns towards the top edge, so a fit over the whole path would be another number.
-    if (sample.time < 40e-6 * (1.0 - 1e-9) || sample.time > 50e-6 * (1.0 + 1e-9) || tip <= 0.0) continue;
+    if (sample.time < 40e-6 * (1.0 - 1e-9) || sample.time > 50e-6 * (1.0 + 1e-9) || tip <= 0.0)
+      continue;
     st += sample.time;
     sl += tip;
     stt += sample.time * sample.time;
@@ -123,10 +126,12 @@ std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options) {
   // 40 000 particles at 1 mm take ~10 minutes; 0.5 mm (8× the work) only without --quick.
   std::vector<VerifyRow> rows;
   for (const std::string variant : {"paper-l_ch", "particle-size"}) {
-    const std::vector<double> cells = options.quick || variant == "paper-l_ch" ? std::vector<double>{1e-3}
-                                                                              : std::vector<double>{1e-3, 0.5e-3};
+    const std::vector<double> cells = options.quick || variant == "paper-l_ch"
+                                          ? std::vector<double>{1e-3}
+                                          : std::vector<double>{1e-3, 0.5e-3};
     for (std::size_t level = 0; level < cells.size(); ++level)
-      for (auto& r : run_level(static_cast<int>(level), cells[level], variant)) rows.push_back(std::move(r));
+      for (auto& r : run_level(static_cast<int>(level), cells[level], variant))
+        rows.push_back(std::move(r));
   }
   return rows;
 }

@@ -16,9 +16,9 @@ namespace fragmpm::pipeline {
 
 namespace {
 
-constexpr double notch_centre = 27.5e-3;   // [m], scenes/verify/notched-bar.toml
-constexpr double notch_depth = 2e-3;       // [m]
-constexpr double bar_height = 10e-3;       // [m]
+constexpr double notch_centre = 27.5e-3;  // [m], scenes/verify/notched-bar.toml
+constexpr double notch_depth = 2e-3;      // [m]
+constexpr double bar_height = 10e-3;      // [m]
 constexpr double fully_damaged = 0.99;
 
 /// Crack length formed in the ligament: vertical extent of the fully damaged particles within
@@ -35,14 +35,15 @@ double formed_crack_length(const mpm::Particles<2>& P, double spacing) {
   return std::min(bar_height - notch_depth, highest - lowest + spacing);
 }
 
-/// partitioning "auto" or "off"; paper_length: l_ch = cell diagonal as in [HH17] Table III instead of
-/// the particle size (the band width that dissipates G_f per crack area).
+/// partitioning "auto" or "off"; paper_length: l_ch = cell diagonal as in [HH17] Table III instead
+/// of the particle size (the band width that dissipates G_f per crack area).
 std::vector<VerifyRow> run_level(int level, double cell_size, const std::string& partitioning,
                                  bool paper_length) {
   std::map<std::string, std::string> overrides{{"grid.cell_size", toml_number(cell_size)},
                                                {"contact.partitioning", "\"" + partitioning + "\""},
                                                {"output.interval", "0.0"}};
-  if (paper_length) overrides["materials[0].characteristic_length"] = toml_number(cell_size * std::sqrt(2.0));
+  if (paper_length)
+    overrides["materials[0].characteristic_length"] = toml_number(cell_size * std::sqrt(2.0));
   const std::string text = with_overrides(embedded_scene("verify/notched-bar.toml"), overrides);
   mpm::Problem<2> problem = parse_scene(text, "scenes/verify/notched-bar.toml");
   const auto& damage_law = std::get<mpm::RankineSoftening>(problem.materials[0].damage);
@@ -50,11 +51,14 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
   const double spacing = std::sqrt(problem.particles.volume0[0]);
   mpm::Solver<2> solver(std::move(problem));
   const double end_time = solver.problem().stop.end_time;
-  const TimedRun timing = run_until(solver, end_time, "notched-bar " + partitioning + (paper_length ? " paper-l_ch " : " ") + cell_label(cell_size), 0.0, [](const mpm::Solver<2>&) {});
+  const TimedRun timing = run_until(
+      solver, end_time,
+      "notched-bar " + partitioning + (paper_length ? " paper-l_ch " : " ") + cell_label(cell_size),
+      0.0, [](const mpm::Solver<2>&) {});
   const auto& row = solver.last_row();
   const double crack = formed_crack_length(solver.particles(), spacing);
-  const std::string variant =
-      std::string(partitioning == "auto" ? "partitioned" : "single-field") + (paper_length ? "-paper-l_ch" : "");
+  const std::string variant = std::string(partitioning == "auto" ? "partitioned" : "single-field") +
+                              (paper_length ? "-paper-l_ch" : "");
   std::vector<VerifyRow> rows;
   VerifyRow length = level_row("notched-bar", variant, level, cell_size, solver, timing);
   length.metric = "crack_length_m (reference: ligament)";
@@ -68,7 +72,8 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
   damage.value = row.totals.dissipated;
   damage.reference = fracture_energy * crack;
   damage.error = relative_error(damage.value, damage.reference);
-  if (partitioning == "auto" && !paper_length) {  // V6 in docs/verification.md: within 15 % at h = 1 mm
+  if (partitioning == "auto" &&
+      !paper_length) {  // V6 in docs/verification.md: within 15 % at h = 1 mm
     damage.target_low = 0.85 * damage.reference;
     damage.target_high = 1.15 * damage.reference;
   }
@@ -86,8 +91,8 @@ std::vector<VerifyRow> run_level(int level, double cell_size, const std::string&
 }  // namespace
 
 std::vector<VerifyRow> verify_notched_bar(const VerifyOptions& options) {
-  const std::vector<double> cells = options.quick ? std::vector<double>{1e-3}
-                                                  : std::vector<double>{1e-3, 0.5e-3};
+  const std::vector<double> cells =
+      options.quick ? std::vector<double>{1e-3} : std::vector<double>{1e-3, 0.5e-3};
   std::vector<VerifyRow> rows;
   for (const std::string partitioning : {"auto", "off"})
     for (std::size_t level = 0; level < cells.size(); ++level)

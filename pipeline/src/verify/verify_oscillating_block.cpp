@@ -1,10 +1,10 @@
 // V7: oscillating-block frictional heating (docs/verification.md; [NBS18] §3, Fig. 6-7). The scene
-// scenes/verify/oscillating-block.toml is run at fixed steps Δt = C Δx / v ([NBS18] eq. (45), v the bulk
-// wave speed) over CFL factors C, with second-order ([NBS18] eq. (31)-(36)) and first-order (eq. (27))
-// frictional work. Metric: the friction work of the driven interval, W(t_end) − W(t1), per unit
-// thickness. There is no closed form ([NBS18] §3); the reference is the second-order value at the
-// smallest C run, the stand-in for the limit C → 0. The work done by the driving walls over the
-// same interval is reported beside it: the friction work can converge no faster than the
+// scenes/verify/oscillating-block.toml is run at fixed steps Δt = C Δx / v ([NBS18] eq. (45), v the
+// bulk wave speed) over CFL factors C, with second-order ([NBS18] eq. (31)-(36)) and first-order
+// (eq. (27)) frictional work. Metric: the friction work of the driven interval, W(t_end) − W(t1),
+// per unit thickness. There is no closed form ([NBS18] §3); the reference is the second-order value
+// at the smallest C run, the stand-in for the limit C → 0. The work done by the driving walls over
+// the same interval is reported beside it: the friction work can converge no faster than the
 // mechanical response it is taken from.
 //
 // Three normal stresses N. At the published N = 100 MPa the drive cannot make the interface slide:
@@ -43,7 +43,8 @@ struct CycleRun {
   std::unique_ptr<mpm::Solver<2>> solver;
 };
 
-/// The bulk (dilatational) wave speed √((K + 4G/3)/ρ) of [NBS18] eq. (45): 1924 m/s for this material.
+/// The bulk (dilatational) wave speed √((K + 4G/3)/ρ) of [NBS18] eq. (45): 1924 m/s for this
+/// material.
 double bulk_wave_speed(const mpm::MaterialSpec& m) {
   return std::sqrt((m.bulk_modulus + 4.0 * m.shear_modulus / 3.0) / m.density);
 }
@@ -53,25 +54,29 @@ const char* order_name(mpm::FrictionWorkOrder order) {
 }
 
 CycleRun run_cycle(double courant, mpm::FrictionWorkOrder order, double normal_stress) {
-  mpm::Problem<2> problem = parse_scene(embedded_scene(scene_name), std::string("scenes/") + scene_name);
+  mpm::Problem<2> problem =
+      parse_scene(embedded_scene(scene_name), std::string("scenes/") + scene_name);
   if (problem.loads.empty() || problem.loads.front().times.empty())
     throw std::runtime_error("oscillating-block: the scene has no normal-load ramp");
   const double load_end = problem.loads.front().times.back();  // t1: the driving starts here
   const double end_time = problem.stop.end_time;
   const double scene_stress = problem.loads.front().tractions.back().norm();
-  if (!(scene_stress > 0.0)) throw std::runtime_error("oscillating-block: the scene's normal load is zero");
+  if (!(scene_stress > 0.0))
+    throw std::runtime_error("oscillating-block: the scene's normal load is zero");
   for (auto& traction : problem.loads.front().tractions) traction *= normal_stress / scene_stress;
   CycleRun run;
   run.cell_size = problem.grid.cell_size;
-  problem.time.fixed_dt = courant * problem.grid.cell_size / bulk_wave_speed(problem.materials.at(0));
+  problem.time.fixed_dt =
+      courant * problem.grid.cell_size / bulk_wave_speed(problem.materials.at(0));
   problem.contact.friction_work_order = order;
   problem.output.interval = 0.0;
   run.solver = std::make_unique<mpm::Solver<2>>(std::move(problem));
   char label[96];
-  std::snprintf(label, sizeof label, "oscillating-block N = %g MPa %s C = %.4g", normal_stress * 1e-6,
-                order_name(order), courant);
+  std::snprintf(label, sizeof label, "oscillating-block N = %g MPa %s C = %.4g",
+                normal_stress * 1e-6, order_name(order), courant);
   const auto nothing = [](const mpm::Solver<2>&) {};
-  const TimedRun loading = run_until(*run.solver, load_end, std::string(label) + " (loading)", 0.0, nothing);
+  const TimedRun loading =
+      run_until(*run.solver, load_end, std::string(label) + " (loading)", 0.0, nothing);
   const mpm::EnergyAccumulators at_t1 = run.solver->last_row().totals;
   run.timing = run_until(*run.solver, end_time, label, 0.0, nothing);
   run.timing.wall_seconds += loading.wall_seconds;
@@ -85,8 +90,8 @@ CycleRun run_cycle(double courant, mpm::FrictionWorkOrder order, double normal_s
 }  // namespace
 
 std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options) {
-  // Halving C from 0.5; [NBS18] Fig. 7 spans the same decade and a half. Partial slip (5 MPa) settles
-  // only below C = 1/64, so its full series goes one level further.
+  // Halving C from 0.5; [NBS18] Fig. 7 spans the same decade and a half. Partial slip (5 MPa)
+  // settles only below C = 1/64, so its full series goes one level further.
   const std::vector<double> quick{0.5, 0.25, 0.125};
   const std::vector<double> full{0.5, 0.25, 0.125, 0.0625, 0.03125, 0.015625};
   std::vector<double> full_partial = full;
@@ -108,12 +113,13 @@ std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options) {
   for (std::size_t v = 0; v < variants.size(); ++v) {
     const Variant& variant = variants[v];
     char name[64];
-    std::snprintf(name, sizeof name, "%gMPa-%s", variant.normal_stress * 1e-6, order_name(variant.order));
+    std::snprintf(name, sizeof name, "%gMPa-%s", variant.normal_stress * 1e-6,
+                  order_name(variant.order));
     std::vector<VerifyRow> friction, drive;
     for (std::size_t k = 0; k < variant.courants.size(); ++k) {
       const CycleRun run = run_cycle(variant.courants[k], variant.order, variant.normal_stress);
-      VerifyRow r = level_row("oscillating-block", name, static_cast<int>(k), run.cell_size, *run.solver,
-                              run.timing);
+      VerifyRow r = level_row("oscillating-block", name, static_cast<int>(k), run.cell_size,
+                              *run.solver, run.timing);
       r.metric = "friction_work_J/m";
       r.value = run.friction_work;
       VerifyRow d = r;
@@ -140,8 +146,9 @@ std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options) {
       } else {
         f.reference = friction_reference;
         f.error = relative_error(f.value, f.reference);
-        // V7 in docs/verification.md: second-order heating within 2 % of the limit at C = 0.5 (level 0), here
-        // for the stick–slide–stick interval (2 MPa); partial slip (5 MPa) is reported beside it.
+        // V7 in docs/verification.md: second-order heating within 2 % of the limit at C = 0.5
+        // (level 0), here for the stick–slide–stick interval (2 MPa); partial slip (5 MPa) is
+        // reported beside it.
         if (second && k == 0 && variant.normal_stress == 2e6) {
           f.target_low = 0.98 * f.reference;
           f.target_high = 1.02 * f.reference;

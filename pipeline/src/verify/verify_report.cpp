@@ -26,15 +26,16 @@ bool report_case(const std::string& directory, const std::string& case_name,
   std::filesystem::create_directories(directory);
   const std::string path = (std::filesystem::path(directory) / (case_name + ".csv")).string();
   std::ofstream csv(path);
-  csv << "case,variant,level,cell_size_m,particles,dt_s,steps,wall_s,metric,value,reference,error\n";
+  csv << "case,variant,level,cell_size_m,particles,dt_s,steps,wall_s,metric,value,reference,"
+         "error\n";
   csv.precision(10);
   for (const auto& r : rows)
     csv << r.case_name << ',' << r.variant << ',' << r.level << ',' << r.cell_size << ','
         << r.particles << ',' << r.dt << ',' << r.steps << ',' << r.wall_seconds << ',' << r.metric
         << ',' << r.value << ',' << r.reference << ',' << r.error << '\n';
-  std::printf("\n%s\n%-8s %-5s %11s %9s %10s %7s %8s  %-28s %12s %12s %10s %6s  %s\n", case_name.c_str(),
-              "variant", "level", "h [m]", "particles", "dt [s]", "steps", "wall [s]", "metric",
-              "value", "reference", "error", "order", "target");
+  std::printf("\n%s\n%-8s %-5s %11s %9s %10s %7s %8s  %-28s %12s %12s %10s %6s  %s\n",
+              case_name.c_str(), "variant", "level", "h [m]", "particles", "dt [s]", "steps",
+              "wall [s]", "metric", "value", "reference", "error", "order", "target");
   bool all_passed = true;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const VerifyRow& r = rows[i];

@@ -19,10 +19,10 @@ inline std::string cell_label(double cell_size) {
 }
 
 /// One progress line per finished run on stderr (verification runs take minutes each).
-inline void announce_run(const std::string& what, std::size_t particles, long long steps, double time,
-                         double wall_seconds) {
-  std::fprintf(stderr, "  %s: %zu particles, %lld steps to t = %.4g s in %.1f s\n", what.c_str(), particles, steps,
-               time, wall_seconds);
+inline void announce_run(const std::string& what, std::size_t particles, long long steps,
+                         double time, double wall_seconds) {
+  std::fprintf(stderr, "  %s: %zu particles, %lld steps to t = %.4g s in %.1f s\n", what.c_str(),
+               particles, steps, time, wall_seconds);
 }
 
 struct TimedRun {
@@ -50,11 +50,13 @@ TimedRun run_until(mpm::Solver<2>& solver, double end_time, const std::string& c
         solver.time() >= end_time * (1.0 - 1e-12)) {
       observe(solver);
       if (observe_interval > 0.0)
-        while (next_observation <= solver.time() * (1.0 + 1e-12)) next_observation += observe_interval;
+        while (next_observation <= solver.time() * (1.0 + 1e-12))
+          next_observation += observe_interval;
     }
   }
   run.steps = solver.step_count();
-  run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   announce_run(case_name, solver.particles().size(), run.steps, solver.time(), run.wall_seconds);
   return run;
 }

@@ -1,7 +1,8 @@
-// V2: sliding block with four friction laws (docs/verification.md; [NBS18] §3, Fig. 2-5, appendix eq. (46)-(54)).
-// The elastic block of scenes/verify/sliding-block.toml is compared at the end of the tangential
-// ramp t_f with a rigid block under the same loads: its mean velocity against eq. (50)-(51) and the
-// accumulated friction work against eq. (52)-(53) (the rigid-block oracle of sliding_block_oracle.hpp).
+// V2: sliding block with four friction laws (docs/verification.md; [NBS18] §3, Fig. 2-5, appendix
+// eq. (46)-(54)). The elastic block of scenes/verify/sliding-block.toml is compared at the end of
+// the tangential ramp t_f with a rigid block under the same loads: its mean velocity against eq.
+// (50)-(51) and the accumulated friction work against eq. (52)-(53) (the rigid-block oracle of
+// sliding_block_oracle.hpp).
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -18,15 +19,16 @@ namespace fragmpm::pipeline {
 
 namespace {
 
-constexpr double block_length = 0.040;   // l [m], as in the scene
-constexpr double block_height = 0.015;   // h [m]
-constexpr double slide_distance = 0.085; // Coulomb slide at t_f [m] ([NBS18] §3)
+constexpr double block_length = 0.040;    // l [m], as in the scene
+constexpr double block_height = 0.015;    // h [m]
+constexpr double slide_distance = 0.085;  // Coulomb slide at t_f [m] ([NBS18] §3)
 constexpr double coulomb_coefficient = 0.2;
-constexpr double load_ratio = 1.0;       // R
-constexpr double ramp_fraction = 0.25;   // t1 = t2 = t_f / 4
-constexpr int oracle_steps = 200000;     // RK4 steps for laws without a closed form
+constexpr double load_ratio = 1.0;      // R
+constexpr double ramp_fraction = 0.25;  // t1 = t2 = t_f / 4
+constexpr int oracle_steps = 200000;    // RK4 steps for laws without a closed form
 
-/// The rigid-block loading of [NBS18] §3 for the scene's material: v_max = 2 % of √(E/ρ) (31.6 m/s).
+/// The rigid-block loading of [NBS18] §3 for the scene's material: v_max = 2 % of √(E/ρ) (31.6
+/// m/s).
 struct Setup {
   double final_speed = 0.0;  ///< v_max [m/s]
   SlidingBlockLoading loading;
@@ -36,11 +38,12 @@ Setup setup() {
   const mpm::Problem<2> probe =
       parse_scene(embedded_scene("verify/sliding-block.toml"), "scenes/verify/sliding-block.toml");
   const mpm::MaterialSpec& m = probe.materials.at(0);
-  const double E = 9.0 * m.bulk_modulus * m.shear_modulus / (3.0 * m.bulk_modulus + m.shear_modulus);
+  const double E =
+      9.0 * m.bulk_modulus * m.shear_modulus / (3.0 * m.bulk_modulus + m.shear_modulus);
   Setup s;
   s.final_speed = 0.02 * std::sqrt(E / m.density);
-  s.loading = sliding_block_loading(m.density, block_height, block_length, coulomb_coefficient, load_ratio,
-                                    s.final_speed, slide_distance, ramp_fraction);
+  s.loading = sliding_block_loading(m.density, block_height, block_length, coulomb_coefficient,
+                                    load_ratio, s.final_speed, slide_distance, ramp_fraction);
   return s;
 }
 
@@ -51,11 +54,14 @@ struct Variant {
 
 /// The four laws of V2 in docs/verification.md: k v_max = 0.5 and S_a = 0.3 N follow the loading.
 std::vector<Variant> variants(const SlidingBlockLoading& b, double final_speed) {
-  return {{"coulomb", toml_number(coulomb_coefficient)},
-          {"velocity-dependent", "{ law = \"velocity-dependent\", mu = 0.2, slope = " +
-                                     toml_number(0.5 / final_speed) + " }"},
-          {"adhesion", "{ law = \"adhesion\", mu = 0.2, shear_strength = " + toml_number(0.3 * b.normal_stress) + " }"},
-          {"static-dynamic", "{ law = \"static-dynamic\", mu_static = 0.4, mu_dynamic = 0.2, half_velocity = 0.05 }"}};
+  return {
+      {"coulomb", toml_number(coulomb_coefficient)},
+      {"velocity-dependent", "{ law = \"velocity-dependent\", mu = 0.2, slope = " +
+                                 toml_number(0.5 / final_speed) + " }"},
+      {"adhesion", "{ law = \"adhesion\", mu = 0.2, shear_strength = " +
+                       toml_number(0.3 * b.normal_stress) + " }"},
+      {"static-dynamic",
+       "{ law = \"static-dynamic\", mu_static = 0.4, mu_dynamic = 0.2, half_velocity = 0.05 }"}};
 }
 
 /// Sets the two traction loads and the end time from the recomputed loading, so that the applied
@@ -71,7 +77,8 @@ void apply_loading(mpm::Problem<2>& problem, const SlidingBlockLoading& b) {
       normal = true;
     } else if (load.name == "push") {
       load.times = {b.tangential_start, b.end_time};
-      load.tractions = {mpm::Vec<2>::Zero(), mpm::Vec<2>(b.ratio * b.normal_stress * b.length / edge, 0.0)};
+      load.tractions = {mpm::Vec<2>::Zero(),
+                        mpm::Vec<2>(b.ratio * b.normal_stress * b.length / edge, 0.0)};
       push = true;
     }
   }
@@ -88,7 +95,8 @@ struct Reference {
 
 Reference oracle(const SlidingBlockLoading& b, const mpm::FrictionLaw& law) {
   if (const auto closed = rigid_block_friction(law))
-    return {rigid_block_velocity(b, *closed, b.end_time), rigid_block_friction_work(b, *closed, b.end_time)};
+    return {rigid_block_velocity(b, *closed, b.end_time),
+            rigid_block_friction_work(b, *closed, b.end_time)};
   // The smooth static/dynamic law ([NBS18] eq. (42)) has no closed-form block motion: integrate it.
   const RigidBlockState s = integrate_rigid_block(b, law, b.end_time, oracle_steps);
   return {s.velocity, s.friction_work};
@@ -98,7 +106,8 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
                                  double cell_size, bool computed_normal) {
   const std::string scene = "scenes/verify/sliding-block.toml";
   // With normals from the mass gradients the block's corner nodes get tilted normals, and relative
-  // sliding reads as approach there; the position test of [NBS18] eq. (8) is what keeps those nodes apart
+  // sliding reads as approach there; the position test of [NBS18] eq. (8) is what keeps those nodes
+  // apart
   // ([NBS18] §2.4), so that variant turns it on.
   const std::string text = with_overrides(embedded_scene("verify/sliding-block.toml"),
                                           {{"grid.cell_size", toml_number(cell_size)},
@@ -117,10 +126,11 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
   if (block < 0) throw SceneError(scene, 0, "bodies", "expected a body named \"block\"");
 
   mpm::Solver<2> solver(std::move(problem));
-  const TimedRun timing = run_until(solver, b.end_time,
-                                    "sliding-block " + variant.name + (computed_normal ? "-computed-normal" : "") +
-                                        " " + cell_label(cell_size),
-                                    0.0, [](const mpm::Solver<2>&) {});
+  const TimedRun timing =
+      run_until(solver, b.end_time,
+                "sliding-block " + variant.name + (computed_normal ? "-computed-normal" : "") +
+                    " " + cell_label(cell_size),
+                0.0, [](const mpm::Solver<2>&) {});
   const mpm::Particles<2>& P = solver.particles();
   double mass = 0.0, momentum = 0.0;
   for (std::size_t p = 0; p < P.size(); ++p)
@@ -157,11 +167,13 @@ std::vector<VerifyRow> run_level(const SlidingBlockLoading& b, const Variant& va
 
 }  // namespace
 
-std::vector<VerifyRow> verify_sliding_block_level(const std::string& variant_name, int level, double cell_size) {
+std::vector<VerifyRow> verify_sliding_block_level(const std::string& variant_name, int level,
+                                                  double cell_size) {
   const Setup s = setup();
   const std::string suffix = "-computed-normal";
   const bool computed_normal = variant_name.ends_with(suffix);
-  const std::string law = computed_normal ? variant_name.substr(0, variant_name.size() - suffix.size()) : variant_name;
+  const std::string law =
+      computed_normal ? variant_name.substr(0, variant_name.size() - suffix.size()) : variant_name;
   for (const Variant& v : variants(s.loading, s.final_speed))
     if (v.name == law) return run_level(s.loading, v, level, cell_size, computed_normal);
   throw std::invalid_argument("sliding-block: unknown variant '" + variant_name + "'");
@@ -170,11 +182,11 @@ std::vector<VerifyRow> verify_sliding_block_level(const std::string& variant_nam
 std::vector<VerifyRow> verify_sliding_block(const VerifyOptions& options) {
   // 5 mm is the paper's grid; finer levels halve it (the interface stays on a grid line).
   // (13.4 ms of sliding is 13 000 steps at 5 mm, 26 000 at 2.5 mm: the finer level takes minutes.)
-  const std::vector<double> cells = options.quick ? std::vector<double>{5e-3}
-                                                  : std::vector<double>{5e-3, 2.5e-3};
+  const std::vector<double> cells =
+      options.quick ? std::vector<double>{5e-3} : std::vector<double>{5e-3, 2.5e-3};
   std::vector<VerifyRow> rows;
-  for (const std::string name : {"coulomb", "velocity-dependent", "adhesion", "static-dynamic",
-                                 "coulomb-computed-normal"})
+  for (const std::string name :
+       {"coulomb", "velocity-dependent", "adhesion", "static-dynamic", "coulomb-computed-normal"})
     for (std::size_t l = 0; l < cells.size(); ++l)
       for (VerifyRow& row : verify_sliding_block_level(name, static_cast<int>(l), cells[l]))
         rows.push_back(std::move(row));

@@ -31,7 +31,7 @@ std::string check_line(const std::string& what, double value, double limit, bool
 
 struct Tracker {
   double max_energy_created = 0.0;  ///< max over steps of the balance error (energy created) [J/m]
-  double max_input = 0.0;           ///< max over steps of initial + |wall work| + |gravity work| [J/m]
+  double max_input = 0.0;  ///< max over steps of initial + |wall work| + |gravity work| [J/m]
   double max_momentum_drift = 0.0;  ///< [kg m/s per m]
   double max_stress = 0.0;          ///< largest |σ| component seen [Pa]
   double max_kinetic_change = 0.0;  ///< relative
@@ -41,14 +41,15 @@ struct Tracker {
 
 using SceneSetup = std::function<void(mpm::Problem<2>&)>;
 /// Scene-specific checks at the end: the solver, the tracker and the initial particle positions.
-using ExtraChecks = std::function<void(const mpm::Solver<2>&, const Tracker&, const std::vector<mpm::Vec<2>>&,
-                                       StabilityResult&)>;
+using ExtraChecks = std::function<void(const mpm::Solver<2>&, const Tracker&,
+                                       const std::vector<mpm::Vec<2>>&, StabilityResult&)>;
 
 /// `created_limit`: largest energy created, as a fraction of the energy input. Explicit stepping
 /// makes kinetic + strain energy oscillate by O(ω Δt) around a conserved value, so a scene run at
 /// the stability limit needs more room than one at the default Courant number.
 StabilityResult run_scene(const std::string& name, const SceneSetup& setup, bool isolated,
-                          bool track_stress, const ExtraChecks& extra, double created_limit = 0.01) {
+                          bool track_stress, const ExtraChecks& extra,
+                          double created_limit = 0.01) {
   StabilityResult result;
   result.scene = name;
   const auto start = std::chrono::steady_clock::now();
@@ -86,7 +87,8 @@ StabilityResult run_scene(const std::string& name, const SceneSetup& setup, bool
     t.max_kinetic_change =
         std::max(t.max_kinetic_change, std::abs(row.kinetic + row.strain - kinetic0) / kinetic0);
     if (track_stress)
-      for (const auto& s : solver.particles().stress) t.max_stress = std::max(t.max_stress, s.cwiseAbs().maxCoeff());
+      for (const auto& s : solver.particles().stress)
+        t.max_stress = std::max(t.max_stress, s.cwiseAbs().maxCoeff());
   }
   result.passed = true;
   auto add = [&](const std::string& line, bool ok) {
@@ -97,11 +99,12 @@ StabilityResult run_scene(const std::string& name, const SceneSetup& setup, bool
     add("stopped with a diagnostic at step " + std::to_string(failure->step) + ": " + failure->what,
         false);
   } else {
-    add(check_line("steps completed", double(solver.step_count()), double(stop.max_steps), true), true);
+    add(check_line("steps completed", double(solver.step_count()), double(stop.max_steps), true),
+        true);
     bool finite = true;
     for (std::size_t p = 0; p < particle_count; ++p)
-      finite = finite && solver.particles().x[p].allFinite() && solver.particles().v[p].allFinite() &&
-               solver.particles().stress[p].allFinite();
+      finite = finite && solver.particles().x[p].allFinite() &&
+               solver.particles().v[p].allFinite() && solver.particles().stress[p].allFinite();
     add(check_line("all fields finite", finite ? 1.0 : 0.0, 1.0, finite), finite);
     add(check_line("particles kept", double(solver.particles().size()), double(particle_count),
                    solver.particles().size() == particle_count),
@@ -112,7 +115,8 @@ StabilityResult run_scene(const std::string& name, const SceneSetup& setup, bool
         created <= created_limit);
     if (isolated) {
       const double drift = t.max_momentum_drift / std::max(momentum_scale, 1e-300);
-      add(check_line("momentum drift / Σ m|v| (max)", drift, 1e-10, drift <= 1e-10), drift <= 1e-10);
+      add(check_line("momentum drift / Σ m|v| (max)", drift, 1e-10, drift <= 1e-10),
+          drift <= 1e-10);
     }
     if (extra) extra(solver, t, initial_positions, result);
   }
@@ -121,7 +125,8 @@ StabilityResult run_scene(const std::string& name, const SceneSetup& setup, bool
   return result;
 }
 
-void require(StabilityResult& r, const std::string& what, double value, double limit, bool ok, const char* unit = "") {
+void require(StabilityResult& r, const std::string& what, double value, double limit, bool ok,
+             const char* unit = "") {
   r.checks.push_back(check_line(what, value, limit, ok, unit));
   r.passed = r.passed && ok;
 }
@@ -142,7 +147,8 @@ void shatter_checks(const mpm::Solver<2>& solver, const Tracker&, const std::vec
   require(r, "failed fraction (d >= 0.99)", fraction, 0.5, fraction >= 0.5);
   require(r, "fastest particle", fastest, 1000.0, fastest <= 1000.0, "m/s");
   const double spacing = solver.problem().grid.cell_size / 2.0;
-  require(r, "lowest particle x (wall at 0)", lowest_x, -0.5 * spacing, lowest_x >= -0.5 * spacing, "m");
+  require(r, "lowest particle x (wall at 0)", lowest_x, -0.5 * spacing, lowest_x >= -0.5 * spacing,
+          "m");
 }
 
 /// The one-particle neck breaks under the centripetal load: the lobes end farther apart than
@@ -152,8 +158,10 @@ void neck_checks(const mpm::Solver<2>& solver, const Tracker&, const std::vector
   mpm::Vec<2> left = mpm::Vec<2>::Zero(), right = left, left0 = left, right0 = left;
   double nl = 0.0, nr = 0.0;
   for (std::size_t p = 0; p < x0.size(); ++p) {
-    if (x0[p][0] < -0.5e-3) left += solver.particles().x[p], left0 += x0[p], nl += 1.0;
-    else if (x0[p][0] > 0.5e-3) right += solver.particles().x[p], right0 += x0[p], nr += 1.0;
+    if (x0[p][0] < -0.5e-3)
+      left += solver.particles().x[p], left0 += x0[p], nl += 1.0;
+    else if (x0[p][0] > 0.5e-3)
+      right += solver.particles().x[p], right0 += x0[p], nr += 1.0;
   }
   const double start = (right0 / nr - left0 / nl).norm(), end = (right / nr - left / nl).norm();
   require(r, "lobe distance end / start (neck broken)", end / start, 1.1, end / start >= 1.1);
@@ -177,8 +185,8 @@ void fines_checks(const mpm::Solver<2>& solver, const Tracker&, const std::vecto
 
 /// Three bodies at one node with two fields: no two particles of different bodies come closer
 /// than a quarter of the particle spacing.
-void triple_junction_checks(const mpm::Solver<2>& solver, const Tracker&, const std::vector<mpm::Vec<2>>&,
-                            StabilityResult& r) {
+void triple_junction_checks(const mpm::Solver<2>& solver, const Tracker&,
+                            const std::vector<mpm::Vec<2>>&, StabilityResult& r) {
   const auto& P = solver.particles();
   double closest = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < P.size(); ++p)
@@ -216,11 +224,11 @@ ExtraChecks thermal_checks(double low, double high) {
 }
 
 /// Interface driven past θ_dam (scenes/stability/hot-interface.toml): temperatures finite, the
-/// hottest particle past θ_dam, friction work stopped before half the run (μ = 0 at θ ≥ θ_dam, [XLS21]
-/// eq. (15)), and the heat content equal to friction work plus the face heat flux input Σ q a_p t
-/// (frictional heat = friction work, [XLS21] eq. (14), (82); no conduction, no expansion).
-void hot_interface_checks(const mpm::Solver<2>& solver, const Tracker& t, const std::vector<mpm::Vec<2>>&,
-                          StabilityResult& r) {
+/// hottest particle past θ_dam, friction work stopped before half the run (μ = 0 at θ ≥ θ_dam,
+/// [XLS21] eq. (15)), and the heat content equal to friction work plus the face heat flux input Σ q
+/// a_p t (frictional heat = friction work, [XLS21] eq. (14), (82); no conduction, no expansion).
+void hot_interface_checks(const mpm::Solver<2>& solver, const Tracker& t,
+                          const std::vector<mpm::Vec<2>>&, StabilityResult& r) {
   const auto& P = solver.particles();
   const auto* law = std::get_if<mpm::ThermalSofteningFriction>(&solver.problem().contact.friction);
   const double theta_dam = law ? law->damage_temperature : std::numeric_limits<double>::quiet_NaN();
@@ -231,7 +239,8 @@ void hot_interface_checks(const mpm::Solver<2>& solver, const Tracker& t, const 
     hottest = std::max(hottest, theta);
   }
   require(r, "all temperatures finite", finite ? 1.0 : 0.0, 1.0, finite);
-  require(r, "hottest particle temperature (above θ_dam)", hottest, theta_dam, finite && hottest > theta_dam, "K");
+  require(r, "hottest particle temperature (above θ_dam)", hottest, theta_dam,
+          finite && hottest > theta_dam, "K");
   const double half = 0.5 * solver.time();
   require(r, "last step with friction work (before half)", t.last_friction_time, half,
           t.last_friction_time > 0.0 && t.last_friction_time < half, "s");
@@ -247,49 +256,75 @@ void hot_interface_checks(const mpm::Solver<2>& solver, const Tracker& t, const 
 /// The stability scenes in run order, each with its setup and checks.
 std::vector<std::pair<std::string, std::function<StabilityResult()>>> stability_scenes() {
   std::vector<std::pair<std::string, std::function<StabilityResult()>>> results;
-  results.emplace_back("stiffness-contrast", [] { return run_scene("stiffness-contrast", nullptr, false, false, nullptr); });
-  results.emplace_back("nearly-incompressible", [] { return run_scene("nearly-incompressible", nullptr, false, false, nullptr); });
-  results.emplace_back("spinning-disk", [] { return run_scene(
-      "spinning-disk", nullptr, true, true,
-      [](const mpm::Solver<2>& solver, const Tracker& t, const std::vector<mpm::Vec<2>>&, StabilityResult& r) {
-        // Two sources of stress in a free rigid rotation: the centrifugal one of a spinning elastic
-        // disk, ρω²R²(3+ν)/8 (plane stress; plane strain is within 10 %), overshot by at most a
-        // factor of two by the sudden spin-up; and forward particle advection, which moves each
-        // particle along its tangent and so expands the disk by (ωΔt)²/2 per step, a radial strain
-        // ω²Δt t/2 resisted with the P-wave modulus. Anything beyond their sum is an error.
-        const auto& m = solver.problem().materials[0];
-        const double nu = (3 * m.bulk_modulus - 2 * m.shear_modulus) / (2 * (3 * m.bulk_modulus + m.shear_modulus));
-        const double omega = 2000.0, radius = 0.005;
-        const double centrifugal = m.density * omega * omega * radius * radius * (3.0 + nu) / 8.0;
-        const double advection = (m.bulk_modulus + 4.0 * m.shear_modulus / 3.0) * omega * omega *
-                                 t.largest_dt * solver.time() / 2.0;
-        const double limit = 2.0 * centrifugal + advection;
-        const bool stress_ok = t.max_stress <= limit;
-        r.checks.push_back(check_line("max |stress| vs centrifugal + advection", t.max_stress, limit,
-                                      stress_ok, "Pa"));
-        const bool energy_ok = t.max_kinetic_change <= 0.05;
-        r.checks.push_back(check_line("energy lost in a quarter turn / E(0)", t.max_kinetic_change, 0.05, energy_ok));
-        r.passed = r.passed && stress_ok && energy_ok;
-      }); });
-  results.emplace_back("impact-500", [] { return run_scene("impact-500", nullptr, false, false, nullptr); });
-  results.emplace_back("dt-limit", [] { return run_scene(
-      "dt-limit",
-      [](mpm::Problem<2>& problem) {
-        for (std::size_t p = 0; p < problem.particles.size(); ++p) {
-          const mpm::Vec<2>& x = problem.particles.x[p];
-          problem.particles.v[p] = mpm::Vec<2>(2.0 * std::sin(std::numbers::pi * x[0] / 0.02),
-                                               -2.0 * std::sin(std::numbers::pi * x[1] / 0.02));
-        }
-        problem.time.fixed_dt = 0.99 * mpm::stable_time_step<2>(problem, problem.particles, 1.0);
-      },
-      true, false, nullptr, 0.05); });
-  results.emplace_back("shatter-500", [] { return run_scene("shatter-500", nullptr, false, false, shatter_checks); });
-  results.emplace_back("one-particle-neck", [] { return run_scene("one-particle-neck", nullptr, true, false, neck_checks); });
-  results.emplace_back("fines", [] { return run_scene("fines", nullptr, true, false, fines_checks); });
-  results.emplace_back("triple-junction", [] { return run_scene("triple-junction", nullptr, true, false, triple_junction_checks); });
-  results.emplace_back("conductivity-contrast", [] { return run_scene("conductivity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0)); });
-  results.emplace_back("heat-capacity-contrast", [] { return run_scene("heat-capacity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0)); });
-  results.emplace_back("hot-interface", [] { return run_scene("hot-interface", nullptr, false, false, hot_interface_checks); });
+  results.emplace_back("stiffness-contrast", [] {
+    return run_scene("stiffness-contrast", nullptr, false, false, nullptr);
+  });
+  results.emplace_back("nearly-incompressible", [] {
+    return run_scene("nearly-incompressible", nullptr, false, false, nullptr);
+  });
+  results.emplace_back("spinning-disk", [] {
+    return run_scene("spinning-disk", nullptr, true, true,
+                     [](const mpm::Solver<2>& solver, const Tracker& t,
+                        const std::vector<mpm::Vec<2>>&, StabilityResult& r) {
+                       // Two sources of stress in a free rigid rotation: the centrifugal one of a
+                       // spinning elastic disk, ρω²R²(3+ν)/8 (plane stress; plane strain is within
+                       // 10 %), overshot by at most a factor of two by the sudden spin-up; and
+                       // forward particle advection, which moves each particle along its tangent
+                       // and so expands the disk by (ωΔt)²/2 per step, a radial strain ω²Δt t/2
+                       // resisted with the P-wave modulus. Anything beyond their sum is an error.
+                       const auto& m = solver.problem().materials[0];
+                       const double nu = (3 * m.bulk_modulus - 2 * m.shear_modulus) /
+                                         (2 * (3 * m.bulk_modulus + m.shear_modulus));
+                       const double omega = 2000.0, radius = 0.005;
+                       const double centrifugal =
+                           m.density * omega * omega * radius * radius * (3.0 + nu) / 8.0;
+                       const double advection = (m.bulk_modulus + 4.0 * m.shear_modulus / 3.0) *
+                                                omega * omega * t.largest_dt * solver.time() / 2.0;
+                       const double limit = 2.0 * centrifugal + advection;
+                       const bool stress_ok = t.max_stress <= limit;
+                       r.checks.push_back(check_line("max |stress| vs centrifugal + advection",
+                                                     t.max_stress, limit, stress_ok, "Pa"));
+                       const bool energy_ok = t.max_kinetic_change <= 0.05;
+                       r.checks.push_back(check_line("energy lost in a quarter turn / E(0)",
+                                                     t.max_kinetic_change, 0.05, energy_ok));
+                       r.passed = r.passed && stress_ok && energy_ok;
+                     });
+  });
+  results.emplace_back("impact-500",
+                       [] { return run_scene("impact-500", nullptr, false, false, nullptr); });
+  results.emplace_back("dt-limit", [] {
+    return run_scene(
+        "dt-limit",
+        [](mpm::Problem<2>& problem) {
+          for (std::size_t p = 0; p < problem.particles.size(); ++p) {
+            const mpm::Vec<2>& x = problem.particles.x[p];
+            problem.particles.v[p] = mpm::Vec<2>(2.0 * std::sin(std::numbers::pi * x[0] / 0.02),
+                                                 -2.0 * std::sin(std::numbers::pi * x[1] / 0.02));
+          }
+          problem.time.fixed_dt = 0.99 * mpm::stable_time_step<2>(problem, problem.particles, 1.0);
+        },
+        true, false, nullptr, 0.05);
+  });
+  results.emplace_back("shatter-500", [] {
+    return run_scene("shatter-500", nullptr, false, false, shatter_checks);
+  });
+  results.emplace_back("one-particle-neck", [] {
+    return run_scene("one-particle-neck", nullptr, true, false, neck_checks);
+  });
+  results.emplace_back("fines",
+                       [] { return run_scene("fines", nullptr, true, false, fines_checks); });
+  results.emplace_back("triple-junction", [] {
+    return run_scene("triple-junction", nullptr, true, false, triple_junction_checks);
+  });
+  results.emplace_back("conductivity-contrast", [] {
+    return run_scene("conductivity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0));
+  });
+  results.emplace_back("heat-capacity-contrast", [] {
+    return run_scene("heat-capacity-contrast", nullptr, true, false, thermal_checks(300.0, 400.0));
+  });
+  results.emplace_back("hot-interface", [] {
+    return run_scene("hot-interface", nullptr, false, false, hot_interface_checks);
+  });
   return results;
 }
 

@@ -14,11 +14,11 @@ struct TextRun {
 using RichText = std::vector<TextRun>;
 
 struct AxisTicks {
-  double lo = 0.0, hi = 1.0;         ///< the axis range (data units, not logarithms)
-  std::vector<double> major;         ///< labelled ticks inside [lo, hi]
-  std::vector<double> minor;         ///< unlabelled ticks inside [lo, hi] (log axes)
-  std::vector<RichText> labels;      ///< one per major tick
-  RichText multiplier;               ///< e.g. "×10^-6" shown at the axis end; empty when unused
+  double lo = 0.0, hi = 1.0;     ///< the axis range (data units, not logarithms)
+  std::vector<double> major;     ///< labelled ticks inside [lo, hi]
+  std::vector<double> minor;     ///< unlabelled ticks inside [lo, hi] (log axes)
+  std::vector<RichText> labels;  ///< one per major tick
+  RichText multiplier;           ///< e.g. "×10^-6" shown at the axis end; empty when unused
 };
 
 /// The step 1, 2 or 5 × 10^k nearest to span/target on the 1–2–5 ladder (span > 0): the span then

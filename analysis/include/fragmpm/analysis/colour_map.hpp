@@ -11,12 +11,13 @@ struct Rgb {
   friend bool operator==(const Rgb&, const Rgb&) = default;
 };
 
-/// Viridis at t in [0, 1] (clamped; NaN gives `no_data_colour()`), quantised to OpenCV's 256 entries.
+/// Viridis at t in [0, 1] (clamped; NaN gives `no_data_colour()`), quantised to OpenCV's 256
+/// entries.
 Rgb viridis(double t);
 
 /// Colour of a body or fragment id. Ids 0–9 take ten well-separated hues of a qualitative palette;
-/// larger ids step round the hue circle by the golden angle (so consecutive ids never look alike) at
-/// alternating saturation and brightness. Negative ids (no fragment, fines) are mid grey.
+/// larger ids step round the hue circle by the golden angle (so consecutive ids never look alike)
+/// at alternating saturation and brightness. Negative ids (no fragment, fines) are mid grey.
 Rgb categorical_colour(std::int64_t id);
 
 /// Grey used for particles whose value is missing (NaN) or whose id is negative.

@@ -1,5 +1,6 @@
 #pragma once
-// Empirical cumulative distributions, number- and mass-weighted (docs/design.md; as [XLS21] Fig. 17-18).
+// Empirical cumulative distributions, number- and mass-weighted (docs/design.md; as [XLS21] Fig.
+// 17-18).
 #include <span>
 #include <vector>
 

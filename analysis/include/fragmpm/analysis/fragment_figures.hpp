@@ -1,6 +1,6 @@
 #pragma once
-// Figures of the fragment analysis (as [XLS21] Fig. 17-18): CDFs of equivalent diameter and roundness
-// with one curve per analysed frame, and fragment count and mean size against time.
+// Figures of the fragment analysis (as [XLS21] Fig. 17-18): CDFs of equivalent diameter and
+// roundness with one curve per analysed frame, and fragment count and mean size against time.
 #include <span>
 #include <string>
 #include <vector>
@@ -23,7 +23,8 @@ enum class CdfWeighting { number, mass };
 /// CDF plot with a staircase curve per entry of `curves` (curves without fragments are left out).
 /// Equivalent diameters are shown with an SI prefix (µm, mm). Throws FigureError when no curve has
 /// a point.
-PlotSpec cdf_plot_spec(std::span<const CdfCurve> curves, CdfQuantity quantity, CdfWeighting weighting);
+PlotSpec cdf_plot_spec(std::span<const CdfCurve> curves, CdfQuantity quantity,
+                       CdfWeighting weighting);
 
 /// Resolved fragments and fines against time.
 PlotSpec fragment_count_spec(std::span<const FragmentSeriesPoint> points);

@@ -1,18 +1,19 @@
 #pragma once
-// Raster view of fragments (docs/design.md): particle domains (CPDI parallelograms x ± r1/2 ± r2/2) drawn
-// into a mask with OpenCV, connected components of that mask, and the comparison with the graph
-// labelling of fragments.hpp. The picture joins fragments whose domains touch or overlap (pieces
-// pressed together), which the graph keeps apart; on well-separated fragments the two must agree.
+// Raster view of fragments (docs/design.md): particle domains (CPDI parallelograms x ± r1/2 ± r2/2)
+// drawn into a mask with OpenCV, connected components of that mask, and the comparison with the
+// graph labelling of fragments.hpp. The picture joins fragments whose domains touch or overlap
+// (pieces pressed together), which the graph keeps apart; on well-separated fragments the two must
+// agree.
 //
 // Raster frame: pixel (col, row) covers x ∈ [x0 + col·s, x0 + (col+1)·s), y ∈ [y0 + row·s, …), i.e.
-// rows grow with y (the image is stored upside down relative to a picture; labelling does not care).
+// rows grow with y (the image is stored upside down relative to a picture; labelling does not
+// care).
 #include <cstddef>
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <opencv2/core/mat.hpp>
 
 #include "fragmpm/analysis/fragments.hpp"
 #include "fragmpm/mpm/particles.hpp"
@@ -31,8 +32,9 @@ struct ParticleRaster {
 /// pixel size `pixel_size`, over their bounding box grown by `pad_pixels` on every side. Throws
 /// std::invalid_argument for a non-positive pixel size, an empty subset, or a raster that would
 /// exceed 2·10⁸ pixels.
-ParticleRaster draw_particle_domains(const mpm::Particles<2>& particles, std::span<const std::size_t> subset,
-                                     double pixel_size, int pad_pixels = 2);
+ParticleRaster draw_particle_domains(const mpm::Particles<2>& particles,
+                                     std::span<const std::size_t> subset, double pixel_size,
+                                     int pad_pixels = 2);
 
 /// The pixel holding point (x, y) of the raster, or (−1, −1) when outside.
 cv::Point raster_pixel(const ParticleRaster& raster, double x, double y);
@@ -40,9 +42,9 @@ cv::Point raster_pixel(const ParticleRaster& raster, double x, double y);
 /// Connected components of the domains of all unmasked particles.
 struct RasterLabels {
   ParticleRaster raster;
-  cv::Mat components;                    ///< CV_32S, 0 = background, 1 … count
-  int count = 0;                         ///< number of connected components (background excluded)
-  std::vector<std::int32_t> component;   ///< per particle: component at its centre, −1 when masked
+  cv::Mat components;                   ///< CV_32S, 0 = background, 1 … count
+  int count = 0;                        ///< number of connected components (background excluded)
+  std::vector<std::int32_t> component;  ///< per particle: component at its centre, −1 when masked
 };
 
 /// Pixel size used when none is given: a quarter of the median local spacing of the unmasked
@@ -64,7 +66,9 @@ struct LabellingComparison {
   std::size_t merged = 0;  ///< components holding particles of more than one graph fragment
   std::size_t empty = 0;   ///< components with no particle centre in them (slivers)
   /// One-to-one: every fragment is exactly one component and every component exactly one fragment.
-  bool agree() const { return split == 0 && merged == 0 && empty == 0 && graph_fragments == raster_components; }
+  bool agree() const {
+    return split == 0 && merged == 0 && empty == 0 && graph_fragments == raster_components;
+  }
   std::string summary() const;  ///< one line for logs
 };
 

@@ -3,7 +3,8 @@
 //
 // A particle is masked when d ≥ d_mask (fully damaged material belongs to no fragment) or when its
 // position is not finite. Two particles p, q are joined when
-//   * neither is masked and both belong to the same body (a fragment is a piece of one grain; grains
+//   * neither is masked and both belong to the same body (a fragment is a piece of one grain;
+//   grains
 //     that touch in the reference configuration stay apart),
 //   * they were neighbours in the reference configuration: |X_p − X_q| ≤ reach_ref · ½(s0_p + s0_q)
 //     with s0 = √V0 the reference spacing (1.5 takes the 8 lattice neighbours of a regular
@@ -49,10 +50,10 @@ struct FragmentLabels {
   std::size_t resolved() const { return count() - fines(); }
 };
 
-/// Labels the fragments of `current`, with `reference` (the run's first frame, same particles in the
-/// same order) as the reference configuration. Needs x, volume0 and damage; uses F (current area
-/// V0 det F) and body when present. Throws std::invalid_argument when the particle counts differ or
-/// the options are out of range.
+/// Labels the fragments of `current`, with `reference` (the run's first frame, same particles in
+/// the same order) as the reference configuration. Needs x, volume0 and damage; uses F (current
+/// area V0 det F) and body when present. Throws std::invalid_argument when the particle counts
+/// differ or the options are out of range.
 FragmentLabels label_fragments(const mpm::Particles<2>& reference, const mpm::Particles<2>& current,
                                const FragmentOptions& options = {});
 

@@ -1,12 +1,11 @@
 #pragma once
 // Particle figures of a run frame (`fragmpm render --field`, and the figures of analyze and the
 // pipeline): the frame's particle arrays turned into a ParticleFigure for one field.
+#include <Eigen/Core>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "fragmpm/analysis/fragments.hpp"
 #include "fragmpm/analysis/particle_figure.hpp"
@@ -26,9 +25,9 @@ FrameField parse_frame_field(const std::string& name);
 double max_principal_stress(const Eigen::Matrix2d& sigma);
 
 /// Figure of `field` over the frame: damage d in [0, 1] (fixed range), temperature θ [K], speed |v|
-/// [m/s], maximum principal stress [MPa], or body id. Domains from the CPDI edge vectors (columns of
-/// Particles::domain). Throws FigureError when the frame lacks the field (temperature without the
-/// thermal module).
+/// [m/s], maximum principal stress [MPa], or body id. Domains from the CPDI edge vectors (columns
+/// of Particles::domain). Throws FigureError when the frame lacks the field (temperature without
+/// the thermal module).
 ParticleFigure frame_figure(const mpm::Particles<2>& particles, FrameField field,
                             std::optional<double> time, const std::string& title);
 
@@ -37,7 +36,8 @@ ParticleFigure frame_figure(const mpm::Particles<2>& particles, FrameField field
 std::vector<std::int64_t> resolved_fragment_ids(const FragmentLabels& labels);
 
 /// Figure of fragment ids (one per particle, negative = no fragment / fines) over the frame.
-ParticleFigure fragment_figure(const mpm::Particles<2>& particles, const std::vector<std::int64_t>& fragment_ids,
+ParticleFigure fragment_figure(const mpm::Particles<2>& particles,
+                               const std::vector<std::int64_t>& fragment_ids,
                                std::optional<double> time, const std::string& title);
 
 }  // namespace fragmpm::analysis

@@ -1,11 +1,10 @@
 #pragma once
 // An off-screen OpenGL context (OSMesa, software rendering): figures are drawn without a display,
-// X server or GPU (docs/design.md "Figures"). The context owns an RGBA framebuffer of the given size,
-// sets a pixel projection (x right, y down, origin at the top-left corner of the image, as in
+// X server or GPU (docs/design.md "Figures"). The context owns an RGBA framebuffer of the given
+// size, sets a pixel projection (x right, y down, origin at the top-left corner of the image, as in
 // OpenCV), and hands the result back as a cv::Mat.
-#include <vector>
-
 #include <opencv2/core/mat.hpp>
+#include <vector>
 
 struct osmesa_context;  // OSMesaContext is `struct osmesa_context*` (GL/osmesa.h)
 
@@ -14,7 +13,8 @@ namespace fragmpm::analysis {
 class OffscreenContext {
  public:
   /// Creates the context and makes it current on this thread. Throws FigureError when the size is
-  /// not in [1, 16384] or OSMesa cannot create a context (e.g. the library lacks a software driver).
+  /// not in [1, 16384] or OSMesa cannot create a context (e.g. the library lacks a software
+  /// driver).
   OffscreenContext(int width, int height);
   ~OffscreenContext();
   OffscreenContext(const OffscreenContext&) = delete;

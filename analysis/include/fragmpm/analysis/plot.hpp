@@ -1,21 +1,20 @@
 #pragma once
-// Line plots rendered off-screen (OSMesa geometry, OpenCV text) and written as PNG: CDFs of fragment
-// size, energy balance over time, force–displacement of the platens, verification error versus run
-// time (docs/design.md "Figures"). Axes carry ticks at nice 1–2–5 values, tick labels, axis labels, a
-// title and a legend; either axis may be logarithmic.
+// Line plots rendered off-screen (OSMesa geometry, OpenCV text) and written as PNG: CDFs of
+// fragment size, energy balance over time, force–displacement of the platens, verification error
+// versus run time (docs/design.md "Figures"). Axes carry ticks at nice 1–2–5 values, tick labels,
+// axis labels, a title and a legend; either axis may be logarithmic.
+#include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/core/mat.hpp>
 
 #include "fragmpm/analysis/axis_ticks.hpp"
 
 namespace fragmpm::analysis {
 
 struct LineSeries {
-  std::string label;            ///< legend entry; empty = not in the legend
-  std::vector<double> x, y;     ///< same length, drawn in the order given
-  bool markers = false;         ///< a round marker at each point
+  std::string label;         ///< legend entry; empty = not in the legend
+  std::vector<double> x, y;  ///< same length, drawn in the order given
+  bool markers = false;      ///< a round marker at each point
 };
 
 struct PlotSpec {

@@ -10,10 +10,9 @@
 // same correction generalised.
 #include <cstdint>
 #include <limits>
+#include <opencv2/core/mat.hpp>
 #include <span>
 #include <vector>
-
-#include <opencv2/core/mat.hpp>
 
 namespace fragmpm::analysis {
 
@@ -55,9 +54,9 @@ struct RegionShape {
   double centroid_y = 0.0;           ///< [u]
   double major_axis = 0.0;           ///< full length a of the moment ellipse rescaled to area A [u]
   double minor_axis = 0.0;           ///< full length b, with π a b / 4 = A [u]
-  double orientation = 0.0;          ///< angle of the major axis from +x towards +y, in (−π/2, π/2]
-  double roundness = 0.0;            ///< 4A/(π a²) = b/a ∈ (0, 1] (ImageJ "Round")
-  double aspect_ratio = 0.0;         ///< a/b ≥ 1 (ImageJ "AR"); +inf for a region with no width
+  double orientation = 0.0;   ///< angle of the major axis from +x towards +y, in (−π/2, π/2]
+  double roundness = 0.0;     ///< 4A/(π a²) = b/a ∈ (0, 1] (ImageJ "Round")
+  double aspect_ratio = 0.0;  ///< a/b ≥ 1 (ImageJ "AR"); +inf for a region with no width
   /// Boundary length [u]; NaN when the caller has no boundary (e.g. cells without an outline).
   double perimeter = std::numeric_limits<double>::quiet_NaN();
 };
@@ -73,7 +72,8 @@ RegionShape region_shape(std::span<const ShapeCell> cells,
 /// Perimeter by the Cauchy–Crofton formula discretised on 4 directions (0°, 45°, 90°, 135°):
 /// P = (π/8) [n₀ + n₉₀ + (n₄₅ + n₁₃₅)/√2] · side, with n_θ the number of times the lines through
 /// pixel centres in direction θ enter or leave the region. Unbiased for isotropic shapes (a disk of
-/// radius r gives 2πr); unlike ImageJ's traced polygon it does not depend on the pixel-edge staircase.
+/// radius r gives 2πr); unlike ImageJ's traced polygon it does not depend on the pixel-edge
+/// staircase.
 double crofton_perimeter(std::int64_t n0, std::int64_t n90, std::int64_t n45, std::int64_t n135,
                          double side);
 
@@ -81,9 +81,9 @@ double crofton_perimeter(std::int64_t n0, std::int64_t n90, std::int64_t n45, st
 struct LabelRegion {
   std::int32_t label = 0;
   std::int64_t pixels = 0;
-  RegionShape shape;         ///< in the physical frame described at label_region_shapes
-  cv::Rect bbox;             ///< in pixels (column, row)
-  double centroid_col = 0.0; ///< pixel coordinates of the centroid, pixel centres at integer + 0.5
+  RegionShape shape;          ///< in the physical frame described at label_region_shapes
+  cv::Rect bbox;              ///< in pixels (column, row)
+  double centroid_col = 0.0;  ///< pixel coordinates of the centroid, pixel centres at integer + 0.5
   double centroid_row = 0.0;
   bool touches_border = false;  ///< has a pixel in the first/last row or column
 };

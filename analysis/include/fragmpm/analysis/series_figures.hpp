@@ -1,7 +1,7 @@
 #pragma once
-// Plots of a run's /series (docs/design.md), read into memory with mpm::RunFileReader::read_series: energy
-// balance over time and force–displacement of each wall. Values are shown with SI prefixes chosen
-// from their magnitude (µs, mJ/m, kN/m, mm).
+// Plots of a run's /series (docs/design.md), read into memory with mpm::RunFileReader::read_series:
+// energy balance over time and force–displacement of each wall. Values are shown with SI prefixes
+// chosen from their magnitude (µs, mJ/m, kN/m, mm).
 #include <string>
 #include <vector>
 
@@ -10,8 +10,8 @@
 
 namespace fragmpm::analysis {
 
-/// Kinetic, strain, dissipated, friction work, wall work and balance error [J/m in 2D] against time.
-/// Throws mpm::RunFileError when a series is missing, FigureError when it has no rows.
+/// Kinetic, strain, dissipated, friction work, wall work and balance error [J/m in 2D] against
+/// time. Throws mpm::RunFileError when a series is missing, FigureError when it has no rows.
 PlotSpec energy_plot_spec(const mpm::RunSeries& series);
 
 /// Each wall's reaction force magnitude |F| [N/m in 2D] against its displacement magnitude |u|;
@@ -19,10 +19,12 @@ PlotSpec energy_plot_spec(const mpm::RunSeries& series);
 /// platen pair of a crushing test: both reactions against the loading platen's travel). When no
 /// wall moves at all (an impact on a fixed wall) the reactions are plotted against time instead.
 /// Throws FigureError when the run has no walls or no rows.
-PlotSpec force_displacement_spec(const mpm::RunSeries& series, const std::vector<std::string>& wall_names);
+PlotSpec force_displacement_spec(const mpm::RunSeries& series,
+                                 const std::vector<std::string>& wall_names);
 
 /// The same, reading /series of the run file at RUN_PATH first (scripts and tests).
 PlotSpec energy_plot_spec(const std::string& run_path);
-PlotSpec force_displacement_spec(const std::string& run_path, const std::vector<std::string>& wall_names);
+PlotSpec force_displacement_spec(const std::string& run_path,
+                                 const std::vector<std::string>& wall_names);
 
 }  // namespace fragmpm::analysis

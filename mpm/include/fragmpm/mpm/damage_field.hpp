@@ -1,8 +1,8 @@
 #pragma once
-// Kernel damage field and its gradient at the particles ([HH17] eq. (17)-(19); [XLS21] eq. (67)), the Verlet
-// neighbour lists it runs on ([HH17] §2.5), and the node-level rules of damage-field-gradient
-// partitioning: the nonlocal nodal gradient ([HH17] Alg. 1; [XLS21] eq. (69)) and the field a particle maps
-// to at a node ([HH17] Alg. 2; [XLS21] eq. (68)).
+// Kernel damage field and its gradient at the particles ([HH17] eq. (17)-(19); [XLS21] eq. (67)),
+// the Verlet neighbour lists it runs on ([HH17] §2.5), and the node-level rules of
+// damage-field-gradient partitioning: the nonlocal nodal gradient ([HH17] Alg. 1; [XLS21] eq. (69))
+// and the field a particle maps to at a node ([HH17] Alg. 2; [XLS21] eq. (68)).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -133,7 +133,8 @@ inline double damage_kernel(double rbar) {
   return rbar >= 1.0 ? 0.0 : 1.0 - rbar * rbar * (3.0 - 2.0 * rbar);
 }
 
-/// Normalised kernel damage field at the particles and its gradient ([HH17] eq. (17)-(19); [XLS21] eq. (67)):
+/// Normalised kernel damage field at the particles and its gradient ([HH17] eq. (17)-(19); [XLS21]
+/// eq. (67)):
 ///   D̄(x_p) = Σ_q d̂_q ω(r̄_pq) / Σ_q ω(r̄_pq),  r̄_pq = |x_p − x_q| / r_p,
 /// summed over q = p and the listed neighbours closer than r_p, and by the quotient rule
 ///   ∇D̄(x_p) = Σ_q (d̂_q − D̄_p) ∇ω_pq / Σ_q ω_pq,  ∇ω_pq = −6 (1 − r̄) (x_p − x_q) / r_p²
@@ -157,9 +158,9 @@ void damage_field_gradient(const NeighbourLists<D>& lists, const std::vector<Vec
 
 // ---- Node-level rules of DFG partitioning ----
 
-/// Order of [HH17] Alg. 1 line 5: true when particle gradient a replaces nodal gradient b, i.e. |a| >
-/// |b|. Equal norms are broken lexicographically by the components (larger first), which makes the
-/// nodal maximum a total order: the result of folding any set of particle gradients into a node
+/// Order of [HH17] Alg. 1 line 5: true when particle gradient a replaces nodal gradient b, i.e. |a|
+/// > |b|. Equal norms are broken lexicographically by the components (larger first), which makes
+/// the nodal maximum a total order: the result of folding any set of particle gradients into a node
 /// does not depend on the order (serial, coloured or per-thread-then-reduced P2G give the same
 /// node).
 template <int D>
@@ -171,9 +172,9 @@ inline bool replaces_nodal_gradient(const Vec<D>& a, const Vec<D>& b) {
   return false;
 }
 
-/// [HH17] Alg. 1 lines 5-7 for one particle–node pair: the nodal gradient (initially zero) becomes the
-/// particle gradient of largest norm among the particles that map to the node ([XLS21] eq. (69) evaluated
-/// at particle centres). Call for every entry of every particle's stencil.
+/// [HH17] Alg. 1 lines 5-7 for one particle–node pair: the nodal gradient (initially zero) becomes
+/// the particle gradient of largest norm among the particles that map to the node ([XLS21] eq. (69)
+/// evaluated at particle centres). Call for every entry of every particle's stencil.
 template <int D>
 inline void fold_nodal_gradient(const Vec<D>& particle_gradient, Vec<D>& nodal_gradient) {
   if (replaces_nodal_gradient<D>(particle_gradient, nodal_gradient))
@@ -201,7 +202,8 @@ inline void accumulate_gradient_tensor(const Vec<D>& particle_gradient, Mat<D>& 
 template <int D>
 Vec<D> principal_gradient(const Mat<D>& tensor);
 
-/// [HH17] Alg. 2 line 3: field (0 or 1) that particle p uses at node i: 0 when ∇D̄_p · ∇D̄_i ≥ 0, else
+/// [HH17] Alg. 2 line 3: field (0 or 1) that particle p uses at node i: 0 when ∇D̄_p · ∇D̄_i ≥ 0,
+/// else
 /// 1. A zero gradient at either end gives field 0.
 template <int D>
 inline std::uint8_t particle_field_at_node(const Vec<D>& particle_gradient,
@@ -211,10 +213,10 @@ inline std::uint8_t particle_field_at_node(const Vec<D>& particle_gradient,
 
 /// |cos| between ∇D̄_p and ∇D̄_i below which a surface-flagged particle's gradient carries no
 /// side information at a node (the solver's junction rule, field_of). Where a free face ends at a
-/// contact surface (the billet corner under the overhanging platen, P2 in docs/verification.md) the junction
-/// particle's DFG points along the free face's normal, within a few degrees of the contact plane
-/// (cos = −0.04 … 0.08 there), and the sign of ∇D̄_p · ∇D̄_i flips with round-off-sized changes of
-/// the nodal direction. arcsin(0.2) ≈ 12°; the P2 error is the same for thresholds 0.1 to 0.3.
+/// contact surface (the billet corner under the overhanging platen, P2 in docs/verification.md) the
+/// junction particle's DFG points along the free face's normal, within a few degrees of the contact
+/// plane (cos = −0.04 … 0.08 there), and the sign of ∇D̄_p · ∇D̄_i flips with round-off-sized changes
+/// of the nodal direction. arcsin(0.2) ≈ 12°; the P2 error is the same for thresholds 0.1 to 0.3.
 inline constexpr double ambiguous_gradient_cosine = 0.2;
 
 /// Whether ∇D̄_p decides the field of particle p at node i by Alg. 2's sign test: it is further

@@ -1,6 +1,6 @@
 #pragma once
-// Damage laws (docs/design.md "Damage laws"), chosen per material. Plain structs in a std::variant: the
-// per-particle dispatch is a jump table, not a virtual call.
+// Damage laws (docs/design.md "Damage laws"), chosen per material. Plain structs in a std::variant:
+// the per-particle dispatch is a jump table, not a virtual call.
 #include <variant>
 #include <vector>
 
@@ -12,15 +12,16 @@ namespace fragmpm::mpm {
 /// No damage: the material stays elastic.
 struct NoDamage {};
 
-/// Rankine with mesh-regularised linear softening ([XLS21] eq. (19)-(21); [HH17] eq. (23)). The strength σ_f is
-/// per particle (Particles::strength), so a Weibull field can replace the uniform value.
+/// Rankine with mesh-regularised linear softening ([XLS21] eq. (19)-(21); [HH17] eq. (23)). The
+/// strength σ_f is per particle (Particles::strength), so a Weibull field can replace the uniform
+/// value.
 struct RankineSoftening {
   double fracture_energy = 0.0;  ///< G_f [J/m²]
-  double youngs_modulus = 0.0;   ///< E [Pa], for the brittleness H̄ = σ_f² / (2 E G_f) (eq. (21))
+  double youngs_modulus = 0.0;  ///< E [Pa], for the brittleness H̄ = σ_f² / (2 E G_f) (eq. (21))
 };
 
-/// Time to failure ([HH17] eq. (24)): once the largest principal stress reaches σ_f, d grows by Δt/τ
-/// per step with τ = l_ch / c_f (the paper's "τ = c_f/ℓ" is a transit time, so ℓ/c_f).
+/// Time to failure ([HH17] eq. (24)): once the largest principal stress reaches σ_f, d grows by
+/// Δt/τ per step with τ = l_ch / c_f (the paper's "τ = c_f/ℓ" is a transit time, so ℓ/c_f).
 struct TimeToFailure {
   double crack_speed = 0.0;  ///< c_f [m/s]
 };
@@ -46,17 +47,18 @@ struct WeibullStrength {
 // Damage mechanics (implemented in damage_law.cpp; D = 2 plane strain and D = 3 instantiated).
 
 /// Mesh-regularised damage modulus H_s = H̄ l_ch / (1 − H̄ l_ch) with the brittleness
-/// H̄ = σ_f² / (2 E G_f) ([XLS21] eq. (20)-(21)). `strength` σ_f [Pa], `characteristic_length` l_ch [m]:
-/// the width of the band the damage localises in. The solver passes the particle size V₀^(1/D),
-/// not the paper's cell diagonal: damage is a particle variable, so a crack localises in one row
-/// of particles, and only l_ch = that row's width makes the band dissipate G_f per unit crack area
-/// (with the cell diagonal and 2 particles per cell a one-row crack dissipates G_f/(2√2)).
-/// Returns NaN when H̄ l_ch ≥ 1: the particle would have to snap back to dissipate G_f, so no
-/// regularised softening exists at this particle size.
-double rankine_softening_modulus(double strength, const RankineSoftening& law, double characteristic_length);
+/// H̄ = σ_f² / (2 E G_f) ([XLS21] eq. (20)-(21)). `strength` σ_f [Pa], `characteristic_length` l_ch
+/// [m]: the width of the band the damage localises in. The solver passes the particle size
+/// V₀^(1/D), not the paper's cell diagonal: damage is a particle variable, so a crack localises in
+/// one row of particles, and only l_ch = that row's width makes the band dissipate G_f per unit
+/// crack area (with the cell diagonal and 2 particles per cell a one-row crack dissipates
+/// G_f/(2√2)). Returns NaN when H̄ l_ch ≥ 1: the particle would have to snap back to dissipate G_f,
+/// so no regularised softening exists at this particle size.
+double rankine_softening_modulus(double strength, const RankineSoftening& law,
+                                 double characteristic_length);
 
-/// Largest characteristic length l_ch [m] with H̄ l_ch < 1 ([XLS21] eq. (21)): every l_ch strictly below
-/// 1/H̄ = 2 E G_f / σ_f² is admissible.
+/// Largest characteristic length l_ch [m] with H̄ l_ch < 1 ([XLS21] eq. (21)): every l_ch strictly
+/// below 1/H̄ = 2 E G_f / σ_f² is admissible.
 double rankine_largest_characteristic_length(double strength, const RankineSoftening& law);
 
 /// One damage update from the trial (undamaged, "effective") Cauchy stress σ̄ [Pa] of a particle
@@ -77,7 +79,8 @@ template <int D>
 double largest_principal_stress(const Mat<D>& stress);
 
 /// Degraded Cauchy stress [Pa] from the trial stress σ̄ and damage d: tensile principal stresses
-/// scaled by (1 − d), compressive ones kept, same eigenvectors ([HH17] eq. (26)-(27)); or σ = (1 − d) σ̄
+/// scaled by (1 − d), compressive ones kept, same eigenvectors ([HH17] eq. (26)-(27)); or σ = (1 −
+/// d) σ̄
 /// ([XLS21] eq. (7)).
 template <int D>
 Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation degradation);
@@ -85,7 +88,8 @@ Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation deg
 /// The energy per reference volume that damage acts on, ψ_t [J/m³]: the stored (recoverable)
 /// energy is ψ(F) − d ψ_t and the damage dissipation of a step is Δd ψ_t.
 ///  * isotropic: ψ_t = ψ(F), since σ = (1 − d) σ̄ derives from (1 − d) ψ;
-///  * tensile spectral: ψ_t = ½ Σ_{τ_i > 0} τ_i ln λ_i, with τ_i the principal Kirchhoff stresses and
+///  * tensile spectral: ψ_t = ½ Σ_{τ_i > 0} τ_i ln λ_i, with τ_i the principal Kirchhoff stresses
+///  and
 ///    λ_i the principal stretches (b = F Fᵀ, coaxial with τ for an isotropic material). In 2D the
 ///    out-of-plane direction has λ₃ = 1 and adds nothing.
 /// Why this is the secant dissipation: see damage_law.cpp; for uniaxial small strain it integrates
@@ -101,22 +105,25 @@ struct DegradedState {
 };
 
 /// degrade_stress and degradable_energy together, with one eigen-solve: the trial stress of an
-/// isotropic material (elastic part plus an isotropic thermal pressure) is coaxial with b = F Fᵀ, so
-/// the eigenvectors n_i of b serve both: σ = σ̄ − d Σ_{σ̄_i > 0} σ̄_i n_i ⊗ n_i with σ̄_i = n_i·σ̄ n_i
-/// ([HH17] eq. (26)-(27)), and ψ_t = ½ Σ_{τ_i > 0} τ_i ln λ_i. `psi` = ψ(F) [J/m³] (isotropic: ψ_t = ψ).
+/// isotropic material (elastic part plus an isotropic thermal pressure) is coaxial with b = F Fᵀ,
+/// so the eigenvectors n_i of b serve both: σ = σ̄ − d Σ_{σ̄_i > 0} σ̄_i n_i ⊗ n_i with σ̄_i = n_i·σ̄
+/// n_i
+/// ([HH17] eq. (26)-(27)), and ψ_t = ½ Σ_{τ_i > 0} τ_i ln λ_i. `psi` = ψ(F) [J/m³] (isotropic: ψ_t
+/// = ψ).
 template <int D>
-DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F, const Mat<D>& trial_stress,
-                                     double damage, Degradation degradation, double psi);
+DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F,
+                                     const Mat<D>& trial_stress, double damage,
+                                     Degradation degradation, double psi);
 
-/// Median of the Weibull strength of a particle of volume V [m³]: σ̄_f (V̄ / V)^{1/m} ([HH17] eq. (25) with
-/// ℛ = ½). In 2D `volume` is an area and is multiplied by the thickness.
+/// Median of the Weibull strength of a particle of volume V [m³]: σ̄_f (V̄ / V)^{1/m} ([HH17] eq.
+/// (25) with ℛ = ½). In 2D `volume` is an area and is multiplied by the thickness.
 double weibull_median_strength(double volume, const WeibullStrength& weibull, int dimension);
 
-/// Weibull strength per particle [Pa] ([HH17] eq. (25)): σ_f = σ̄_f (V̄/V · ln ℛ / ln ½)^{1/m}, ℛ uniform in
-/// (0, 1) from std::mt19937_64 seeded with `weibull.seed`, drawn in particle order (so a scene and a
-/// seed give the same strengths on every platform). `volumes` are the particles' volumes [m³], or
-/// areas [m²] in 2D, which are multiplied by `weibull.thickness`.
-std::vector<double> weibull_strengths(const std::vector<double>& volumes, const WeibullStrength& weibull,
-                                      int dimension);
+/// Weibull strength per particle [Pa] ([HH17] eq. (25)): σ_f = σ̄_f (V̄/V · ln ℛ / ln ½)^{1/m}, ℛ
+/// uniform in (0, 1) from std::mt19937_64 seeded with `weibull.seed`, drawn in particle order (so a
+/// scene and a seed give the same strengths on every platform). `volumes` are the particles'
+/// volumes [m³], or areas [m²] in 2D, which are multiplied by `weibull.thickness`.
+std::vector<double> weibull_strengths(const std::vector<double>& volumes,
+                                      const WeibullStrength& weibull, int dimension);
 
 }  // namespace fragmpm::mpm

@@ -1,8 +1,9 @@
 #pragma once
-// Friction laws for the momentum-exchange contact of [NBS18] §2.6: each law gives the sliding traction
-// S_slide that the contact can carry, from the normal momentum change d_n, the stick tangential
-// momentum change d_t, the reduced mass and the contact area. Laws are plain structs held in a
-// std::variant, so the per-node dispatch is a jump table, not a virtual call (docs/design.md).
+// Friction laws for the momentum-exchange contact of [NBS18] §2.6: each law gives the sliding
+// traction S_slide that the contact can carry, from the normal momentum change d_n, the stick
+// tangential momentum change d_t, the reduced mass and the contact area. Laws are plain structs
+// held in a std::variant, so the per-node dispatch is a jump table, not a virtual call
+// (docs/design.md).
 #include <variant>
 
 namespace fragmpm::mpm {
@@ -18,7 +19,8 @@ struct VelocityDependentFriction {
   double slope = 0.0;        ///< k [s/m]
 };
 
-/// S = S_a + μ N; separated surfaces stay stuck until the elliptical criterion of eq. (25) breaks them
+/// S = S_a + μ N; separated surfaces stay stuck until the elliptical criterion of eq. (25) breaks
+/// them
 /// ([NBS18] §2.9, eq. (24)-(25)). Needs the contact area (eq. (11)).
 struct AdhesiveFriction {
   double coefficient = 0.0;       ///< μ
@@ -55,15 +57,16 @@ inline double friction_coefficient(const VelocityDependentFriction& law, double 
 inline double friction_coefficient(const SmoothStaticDynamicFriction& law, double slip) {
   const double denominator = law.half_velocity + slip;
   if (denominator <= 0.0) return law.static_coefficient;
-  return (law.static_coefficient * law.half_velocity + law.dynamic_coefficient * slip) / denominator;
+  return (law.static_coefficient * law.half_velocity + law.dynamic_coefficient * slip) /
+         denominator;
 }
 
 /// μ(θ) = μ₀ ⟨θ_dam − θ⟩² / (θ_dam − θ_ref)² at temperature θ [K] ([XLS21] eq. (15)).
 inline double friction_coefficient(const ThermalSofteningFriction& law, double temperature) {
   const double span = law.damage_temperature - law.reference_temperature;
   const double remaining = law.damage_temperature - temperature;
-  if (remaining <= 0.0) return 0.0;                // Macaulay bracket ⟨θ_dam − θ⟩
-  if (span == 0.0) return law.coefficient;         // degenerate θ_dam = θ_ref: a step at θ_dam
+  if (remaining <= 0.0) return 0.0;         // Macaulay bracket ⟨θ_dam − θ⟩
+  if (span == 0.0) return law.coefficient;  // degenerate θ_dam = θ_ref: a step at θ_dam
   return law.coefficient * (remaining * remaining) / (span * span);
 }
 

@@ -10,11 +10,11 @@ namespace fragmpm::mpm {
 
 template <int D>
 struct GridIndex {
-  Vec<D> origin = Vec<D>::Zero();   ///< position of global node (0, …, 0) [m]
-  double cell_size = 1.0;           ///< h [m]
-  double inverse_cell_size = 1.0;   ///< 1/h [1/m]
-  IVec<D> lower = IVec<D>::Zero();  ///< global index of the first active node
-  IVec<D> extent = IVec<D>::Ones(); ///< active nodes per direction
+  Vec<D> origin = Vec<D>::Zero();    ///< position of global node (0, …, 0) [m]
+  double cell_size = 1.0;            ///< h [m]
+  double inverse_cell_size = 1.0;    ///< 1/h [1/m]
+  IVec<D> lower = IVec<D>::Zero();   ///< global index of the first active node
+  IVec<D> extent = IVec<D>::Ones();  ///< active nodes per direction
 
   std::int64_t node_count() const {
     std::int64_t n = 1;
@@ -38,7 +38,9 @@ struct GridIndex {
     }
     return node;
   }
-  Vec<D> position(const IVec<D>& node) const { return origin + cell_size * node.template cast<double>(); }
+  Vec<D> position(const IVec<D>& node) const {
+    return origin + cell_size * node.template cast<double>();
+  }
 };
 
 }  // namespace fragmpm::mpm

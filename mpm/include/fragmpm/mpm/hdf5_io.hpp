@@ -14,7 +14,8 @@
 
 namespace fragmpm::mpm {
 
-/// Raised for unreadable, missing or inconsistent HDF5 files; the message names the file and object.
+/// Raised for unreadable, missing or inconsistent HDF5 files; the message names the file and
+/// object.
 struct RunFileError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -24,8 +25,7 @@ namespace h5 {
 /// Element types the layer reads and writes.
 template <class T>
 concept Element = std::same_as<T, double> || std::same_as<T, float> ||
-                  std::same_as<T, std::int32_t> || std::same_as<T, std::int64_t> ||
-                  std::same_as<T, std::uint8_t>;
+    std::same_as<T, std::int32_t> || std::same_as<T, std::int64_t> || std::same_as<T, std::uint8_t>;
 
 using Dims = std::vector<std::size_t>;
 
@@ -49,7 +49,7 @@ class Object {
   Object& operator=(const Object&) = delete;
   ~Object();
 
-  std::int64_t id() const { return id_; }             ///< the raw hid_t, for direct C API calls
+  std::int64_t id() const { return id_; }  ///< the raw hid_t, for direct C API calls
   const std::string& file_path() const { return file_; }
   const std::string& object_path() const { return path_; }  ///< "/" for the root group
 
@@ -60,8 +60,8 @@ class Object {
   void set_attribute(const std::string& name, const char* value) const;
   bool has_attribute(const std::string& name) const;
   void remove_attribute(const std::string& name) const;  ///< no-op when absent
-  /// Readers throw RunFileError when the attribute is missing or of another kind. Integer attributes
-  /// read as double are converted; floating attributes are not read as integers.
+  /// Readers throw RunFileError when the attribute is missing or of another kind. Integer
+  /// attributes read as double are converted; floating attributes are not read as integers.
   double attribute_double(const std::string& name) const;
   std::int64_t attribute_int64(const std::string& name) const;
   std::string attribute_string(const std::string& name) const;
@@ -84,7 +84,8 @@ class Dataset;
 /// A group (or the root group of a file). Paths are relative to this group ("a/b/c") or absolute.
 class Group : public Object {
  public:
-  bool exists(const std::string& path) const;  ///< true when every component of the link path exists
+  bool exists(
+      const std::string& path) const;  ///< true when every component of the link path exists
   bool is_group(const std::string& path) const;
   bool is_dataset(const std::string& path) const;
   Group open_group(const std::string& path) const;
@@ -96,8 +97,8 @@ class Group : public Object {
   void remove(const std::string& path) const;
 
   /// Writes a contiguous dataset of shape `dims` from `count` row-major values. An existing dataset
-  /// of the same element type and shape is overwritten in place (no file growth); any other existing
-  /// object of that name is replaced.
+  /// of the same element type and shape is overwritten in place (no file growth); any other
+  /// existing object of that name is replaced.
   template <Element T>
   Dataset write(const std::string& path, const T* data, std::size_t count, const Dims& dims) const;
   template <Element T>
@@ -108,8 +109,8 @@ class Group : public Object {
   Array<T> read(const std::string& path) const;
   Dataset open_dataset(const std::string& path) const;
 
-  /// Creates an extendible dataset of shape (0, row_dims...) with unlimited first dimension, chunked
-  /// by `chunk_rows` rows. Replaces an existing object of that name.
+  /// Creates an extendible dataset of shape (0, row_dims...) with unlimited first dimension,
+  /// chunked by `chunk_rows` rows. Replaces an existing object of that name.
   template <Element T>
   Dataset create_extendible(const std::string& path, const Dims& row_dims,
                             std::size_t chunk_rows = 1024) const;
@@ -125,8 +126,8 @@ class Dataset : public Object {
   std::size_t rows() const;  ///< first dimension (1 for a scalar dataset)
   template <Element T>
   Array<T> read() const;
-  /// Appends `rows` rows (each of the dataset's row shape) from row-major `data`; the dataset must be
-  /// extendible (see Group::create_extendible).
+  /// Appends `rows` rows (each of the dataset's row shape) from row-major `data`; the dataset must
+  /// be extendible (see Group::create_extendible).
   template <Element T>
   void append_rows(const T* data, std::size_t rows) const;
   template <Element T>

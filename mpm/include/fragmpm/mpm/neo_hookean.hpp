@@ -41,7 +41,9 @@ struct NeoHookean {
 
   /// Cauchy stress σ = τ / J [Pa].
   template <int D>
-  Mat<D> cauchy(const Mat<D>& F) const { return kirchhoff<D>(F) / F.determinant(); }
+  Mat<D> cauchy(const Mat<D>& F) const {
+    return kirchhoff<D>(F) / F.determinant();
+  }
 
   /// Strain energy per reference volume ψ [J/m³].
   template <int D>
@@ -62,7 +64,9 @@ struct NeoHookean {
     const double tr_b = trace_b<D>(F);
     const Mat<D> b = F * F.transpose();
     const double mean_b = tr_b / 3.0;
-    stress = (bulk_modulus * log_J * Mat<D>::Identity() + shear_modulus * J_m23 * (b - mean_b * Mat<D>::Identity())) / J;
+    stress = (bulk_modulus * log_J * Mat<D>::Identity() +
+              shear_modulus * J_m23 * (b - mean_b * Mat<D>::Identity())) /
+             J;
     energy = 0.5 * bulk_modulus * log_J * log_J + 0.5 * shear_modulus * (J_m23 * tr_b - 3.0);
   }
   /// Dilatational wave speed c = sqrt((K + 4G/3)/ρ) for current density ρ [m/s].

@@ -1,6 +1,6 @@
 #pragma once
-// Material points as a structure of arrays (docs/design.md). Units SI; in 2D (plane strain) volumes are
-// areas per unit thickness [m^2] and masses are per unit thickness [kg/m].
+// Material points as a structure of arrays (docs/design.md). Units SI; in 2D (plane strain) volumes
+// are areas per unit thickness [m^2] and masses are per unit thickness [kg/m].
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -11,14 +11,15 @@ namespace fragmpm::mpm {
 
 template <int D>
 struct Particles {
-  std::vector<Vec<D>> x;           ///< position [m]
-  std::vector<Vec<D>> v;           ///< velocity [m/s]
-  std::vector<Mat<D>> F;           ///< deformation gradient
-  std::vector<double> volume0;     ///< initial volume [m^D per unit thickness^(3-D)]
-  std::vector<double> mass;        ///< [kg per unit thickness^(3-D)]
-  std::vector<Mat<D>> domain;      ///< CPDI domain: column k is the full edge vector r_(k+1) [m]; corners x ± r1/2 ± r2/2
-  std::vector<Mat<D>> stress;      ///< Cauchy stress [Pa], in-plane components
-  std::vector<double> damage;      ///< d in [0, 1]
+  std::vector<Vec<D>> x;        ///< position [m]
+  std::vector<Vec<D>> v;        ///< velocity [m/s]
+  std::vector<Mat<D>> F;        ///< deformation gradient
+  std::vector<double> volume0;  ///< initial volume [m^D per unit thickness^(3-D)]
+  std::vector<double> mass;     ///< [kg per unit thickness^(3-D)]
+  std::vector<Mat<D>> domain;   ///< CPDI domain: column k is the full edge vector r_(k+1) [m];
+                                ///< corners x ± r1/2 ± r2/2
+  std::vector<Mat<D>> stress;   ///< Cauchy stress [Pa], in-plane components
+  std::vector<double> damage;   ///< d in [0, 1]
   std::vector<double> damage_history;  ///< R: largest equivalent stress seen [Pa]
   std::vector<std::uint8_t> surface;   ///< s in {0, 1}: on a body boundary ([HH17] §2.4)
   std::vector<std::int32_t> body;      ///< body id

@@ -26,8 +26,8 @@ struct MaterialSpec {
   double density = 0.0;        ///< ρ0 [kg/m^3]
   DamageLaw damage = NoDamage{};
   Degradation degradation = Degradation::tensile_spectral;
-  double strength = 0.0;       ///< uniform σ_f [Pa] (Particles::strength holds the per-particle value)
-  bool weibull = false;        ///< strengths drawn from `weibull_strength` ([HH17] eq. (25))
+  double strength = 0.0;  ///< uniform σ_f [Pa] (Particles::strength holds the per-particle value)
+  bool weibull = false;   ///< strengths drawn from `weibull_strength` ([HH17] eq. (25))
   WeibullStrength weibull_strength;
   /// l_ch of the damage law [m]; 0 = the particle size V₀^(1/D) (the width of a one-particle crack
   /// band). The papers list l_ch as an input ([HH17] Tables II-III: 1.414 mm at h = 1 mm).
@@ -58,10 +58,10 @@ struct WallSpec {
 template <int D>
 struct TractionLoad {
   std::string name;
-  std::vector<std::int64_t> particles;  ///< loaded particles
-  std::vector<double> boundary_measure; ///< a_p per loaded particle [m in 2D, m² in 3D]
-  std::vector<double> times;            ///< [s], increasing
-  std::vector<Vec<D>> tractions;        ///< [Pa] at `times`
+  std::vector<std::int64_t> particles;   ///< loaded particles
+  std::vector<double> boundary_measure;  ///< a_p per loaded particle [m in 2D, m² in 3D]
+  std::vector<double> times;             ///< [s], increasing
+  std::vector<Vec<D>> tractions;         ///< [Pa] at `times`
 
   Vec<D> traction(double t) const {
     if (times.empty()) return Vec<D>::Zero();
@@ -80,14 +80,14 @@ struct TractionLoad {
 enum class Partitioning {
   automatic,  ///< on when the scene has more than one body or a damaging material
   off,        ///< one velocity field everywhere (the "single-field" comparison runs)
-  bodies,     ///< field = (body ≠ 0), always separable: a-priori multimaterial contact ([NBS18] §2.2),
-              ///< the two-body reference of the self-contact check ([HH17] §3.1)
+  bodies,  ///< field = (body ≠ 0), always separable: a-priori multimaterial contact ([NBS18] §2.2),
+           ///< the two-body reference of the self-contact check ([HH17] §3.1)
 };
 
 /// How the nonlocal nodal damage-field gradient is formed from the particle gradients.
 enum class NodalGradientRule {
   principal,  ///< principal direction of Σ_p ∇D̄_p ⊗ ∇D̄_p ([HH17] §2.2's maximisation; default)
-  largest,    ///< the particle gradient of largest norm ([HH17] Alg. 1)
+  largest,  ///< the particle gradient of largest norm ([HH17] Alg. 1)
 };
 
 template <int D>
@@ -96,7 +96,8 @@ struct ContactSpec {
   FrictionLaw friction = CoulombFriction{};  ///< between the two fields of a separable node
   /// Separable when the largest d̂ = max(s, d) of a particle mapping to the node reaches
   /// `critical_damage` ([HH17] §2.3: "at least one particle fully damaged") and the mass-weighted
-  /// mean d̂ of each field exceeds `minimum_damage` ([HH17] eq. (21), Alg. 3; [XLS21] eq. (70)-(71)).
+  /// mean d̂ of each field exceeds `minimum_damage` ([HH17] eq. (21), Alg. 3; [XLS21] eq.
+  /// (70)-(71)).
   double critical_damage = 1.0;  ///< D_cr
   double minimum_damage = 0.25;  ///< D_min ([HH17] Table III)
   /// Neighbour lists of the damage field are rebuilt once a particle has moved this fraction of
@@ -106,18 +107,21 @@ struct ContactSpec {
   /// straight crack's normal in the tests, 7° for the principal direction), so principal is the
   /// default; largest is kept to reproduce the paper's algorithm.
   NodalGradientRule nodal_gradient = NodalGradientRule::principal;
-  bool position_gap_test = false;  ///< also require overlapping extrapolated positions ([NBS18] eq. (8))
-  /// Frictional heat per step at two-field nodes and contact walls: second order ([NBS18] eq. (31)-(36))
-  /// converges in Δt where first order (eq. (27)) needs a ten times smaller step ([NBS18] Fig. 7).
+  bool position_gap_test =
+      false;  ///< also require overlapping extrapolated positions ([NBS18] eq. (8))
+  /// Frictional heat per step at two-field nodes and contact walls: second order ([NBS18] eq.
+  /// (31)-(36)) converges in Δt where first order (eq. (27)) needs a ten times smaller step
+  /// ([NBS18] Fig. 7).
   FrictionWorkOrder friction_work_order = FrictionWorkOrder::second;
-  Vec<D> normal = Vec<D>::Zero();  ///< prescribed contact normal of field 0; zero = from mass gradients ([XLS21] eq. (74))
+  Vec<D> normal = Vec<D>::Zero();  ///< prescribed contact normal of field 0; zero = from mass
+                                   ///< gradients ([XLS21] eq. (74))
 };
 
 template <int D>
 struct GridSpec {
-  double cell_size = 0.0;           ///< h [m]
-  Vec<D> min = Vec<D>::Zero();      ///< lower corner of the computational domain [m]
-  Vec<D> max = Vec<D>::Zero();      ///< upper corner [m]
+  double cell_size = 0.0;       ///< h [m]
+  Vec<D> min = Vec<D>::Zero();  ///< lower corner of the computational domain [m]
+  Vec<D> max = Vec<D>::Zero();  ///< upper corner [m]
   ShapeFunctionKind shape_function = ShapeFunctionKind::cpdi;
 };
 
@@ -126,21 +130,21 @@ struct TimeSpec {
   double fixed_dt = 0.0;      ///< [s]; 0 = adaptive
   double pic_fraction = 0.0;  ///< ζ of [XLS21] eq. (64): 0 = pure FLIP, 1 = pure PIC
   /// ζ_θ for the particle temperatures: θ_p ← (1 − ζ_θ)(θ_p + Δt Σ S̄ θ̇_i) + ζ_θ Σ S̄ (θ_i + Δt θ̇_i).
-  /// 0 is [XLS21] eq. (62), whose increment lets a particle hotter than the nodal interpolant warm further
-  /// (7.8 K past the hottest initial temperature at a conductivity contrast of 10⁴); the PIC part
-  /// is a convex combination of nodal temperatures and conserves the heat content exactly.
+  /// 0 is [XLS21] eq. (62), whose increment lets a particle hotter than the nodal interpolant warm
+  /// further (7.8 K past the hottest initial temperature at a conductivity contrast of 10⁴); the
+  /// PIC part is a convex combination of nodal temperatures and conserves the heat content exactly.
   double thermal_pic_fraction = 0.0;
 };
 
 struct StopSpec {
-  double end_time = std::numeric_limits<double>::infinity();   ///< [s]
+  double end_time = std::numeric_limits<double>::infinity();  ///< [s]
   long long max_steps = std::numeric_limits<long long>::max();
   double platen_displacement = std::numeric_limits<double>::infinity();  ///< |displacement| [m]
   int platen = -1;  ///< wall index whose displacement is watched; -1 = none
 };
 
 struct OutputSpec {
-  double interval = 0.0;        ///< [s] between frames; 0 = only first and last
+  double interval = 0.0;            ///< [s] between frames; 0 = only first and last
   std::vector<std::string> fields;  ///< frame datasets to write (empty = all)
 };
 
@@ -155,11 +159,11 @@ struct Problem {
   std::vector<WallSpec<D>> walls;
   ContactSpec<D> contact;
   std::vector<TractionLoad<D>> loads;
-  ThermalSpec<D> thermal;  ///< thermal module data; empty = module off
+  ThermalSpec<D> thermal;               ///< thermal module data; empty = module off
   std::vector<std::string> body_names;  ///< index = body id
   Particles<D> particles;
-  std::string scene_path;   ///< where it came from (for messages and /meta)
-  std::string scene_text;   ///< verbatim scene file, stored in /meta so a run can be restarted
+  std::string scene_path;  ///< where it came from (for messages and /meta)
+  std::string scene_text;  ///< verbatim scene file, stored in /meta so a run can be restarted
 };
 
 }  // namespace fragmpm::mpm

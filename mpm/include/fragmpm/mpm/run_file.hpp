@@ -1,7 +1,9 @@
 #pragma once
 // One HDF5 file per run (docs/design.md), SI units, plus an XDMF file beside it for ParaView/VisIt.
-//   /meta                 attributes: program_version, git_hash, scene_text, scene_path, unit_system,
-//                         dimension, modules (one "name: on|off — reason" line each), failure (if any)
+//   /meta                 attributes: program_version, git_hash, scene_text, scene_path,
+//   unit_system,
+//                         dimension, modules (one "name: on|off — reason" line each), failure (if
+//                         any)
 //   /frames/NNNNNN/       attributes time, step; datasets x, v, F, volume0, mass, r1, r2, stress,
 //                         damage, surface, body, material (+ temperature when thermal)
 //   /series/              time, dt, kinetic, strain, thermal, dissipated, friction_work, wall_work,
@@ -57,8 +59,8 @@ class RunFile {
   const std::string& path() const;
   RunMeta meta() const;
 
-  /// Writes /frames/NNNNNN (NNNNNN = zero-padded frame index) with the requested fields (empty = all)
-  /// and rewrites the XDMF file. Returns the frame index.
+  /// Writes /frames/NNNNNN (NNNNNN = zero-padded frame index) with the requested fields (empty =
+  /// all) and rewrites the XDMF file. Returns the frame index.
   int write_frame(long long step, double time, const Particles<D>& particles,
                   const std::vector<std::string>& fields);
   /// Appends rows to /series (extendible datasets) and flushes the file.
@@ -85,12 +87,13 @@ class RunFile {
 /// Reads one dataset of /series as a flat vector (row-major for steps×D datasets).
 std::vector<double> read_series(const std::string& path, const std::string& name);
 
-/// Writes the frame datasets of `particles` (docs/design.md layout and units attributes; `fields` empty =
-/// all, x always) into `group`. Used for run frames and for the /particles group of grain files.
-/// Returns the names of the datasets written.
+/// Writes the frame datasets of `particles` (docs/design.md layout and units attributes; `fields`
+/// empty = all, x always) into `group`. Used for run frames and for the /particles group of grain
+/// files. Returns the names of the datasets written.
 template <int D>
-std::vector<std::string> write_particle_datasets(const h5::Group& group, const Particles<D>& particles,
-                             const std::vector<std::string>& fields);
+std::vector<std::string> write_particle_datasets(const h5::Group& group,
+                                                 const Particles<D>& particles,
+                                                 const std::vector<std::string>& fields);
 /// Reads the frame datasets of `group`; fields not stored keep the defaults of Particles::resize.
 template <int D>
 Particles<D> read_particle_datasets(const h5::Group& group);

@@ -2,7 +2,8 @@
 // The /fragments/ groups of a run file: tables that an analysis computes in memory (named columns
 // with units and descriptions, group attributes) and FragmentGroupWriter stores. The columns and
 // their meaning belong to the analysis (analysis/fragment_tables.hpp); this side only knows how a
-// table is laid out in HDF5: one 1-D dataset per column, `units` and `description` attributes on each.
+// table is laid out in HDF5: one 1-D dataset per column, `units` and `description` attributes on
+// each.
 #include <cstdint>
 #include <string>
 #include <utility>

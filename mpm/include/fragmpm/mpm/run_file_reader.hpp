@@ -1,7 +1,8 @@
 #pragma once
-// Read-only access to a run file (layout in run_file.hpp): /meta, the frame list, frames and /series,
-// for the commands that only look at a finished or running run (analyze, render, pipeline figures).
-// RunFile<D> is the writer; both share the layout code, so a run file is read one way everywhere.
+// Read-only access to a run file (layout in run_file.hpp): /meta, the frame list, frames and
+// /series, for the commands that only look at a finished or running run (analyze, render, pipeline
+// figures). RunFile<D> is the writer; both share the layout code, so a run file is read one way
+// everywhere.
 #include <map>
 #include <memory>
 #include <string>
@@ -21,7 +22,7 @@ struct NotARunFile : RunFileError {
 
 /// One frame of the run file: /frames/NNNNNN with its attributes and the datasets it holds.
 struct FrameEntry {
-  int index = 0;                    ///< NNNNNN
+  int index = 0;  ///< NNNNNN
   long long step = 0;
   double time = 0.0;                ///< [s]
   std::size_t points = 0;           ///< rows of x
@@ -40,7 +41,9 @@ struct RunSeries {
   /// Throws RunFileError "SOURCE: /series/NAME: no such series" when the file had no such dataset.
   const std::vector<double>& column(const std::string& name) const;
   static std::string wall_force(const std::string& wall) { return "wall_" + wall + "_force"; }
-  static std::string wall_displacement(const std::string& wall) { return "wall_" + wall + "_displacement"; }
+  static std::string wall_displacement(const std::string& wall) {
+    return "wall_" + wall + "_displacement";
+  }
 };
 
 /// An open run file, read-only. Move-only.

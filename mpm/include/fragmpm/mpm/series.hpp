@@ -9,12 +9,12 @@ namespace fragmpm::mpm {
 
 /// Running totals that a restart must restore exactly.
 struct EnergyAccumulators {
-  double wall_work = 0.0;      ///< work done by walls on the material [J per unit thickness in 2D]
-  double gravity_work = 0.0;   ///< work done by gravity [J]
-  double load_work = 0.0;      ///< work done by traction loads [J]
-  double friction_work = 0.0;  ///< dissipated by friction at walls and contacts [J]
-  double dissipated = 0.0;     ///< dissipated by damage [J]
-  double initial_energy = 0.0; ///< kinetic + strain at step 0 [J]
+  double wall_work = 0.0;       ///< work done by walls on the material [J per unit thickness in 2D]
+  double gravity_work = 0.0;    ///< work done by gravity [J]
+  double load_work = 0.0;       ///< work done by traction loads [J]
+  double friction_work = 0.0;   ///< dissipated by friction at walls and contacts [J]
+  double dissipated = 0.0;      ///< dissipated by damage [J]
+  double initial_energy = 0.0;  ///< kinetic + strain at step 0 [J]
 };
 
 /// One row of /series, recorded after each step.
@@ -31,7 +31,8 @@ struct SeriesRow {
   /// scheme's numerical dissipation.
   double balance_error = 0.0;
   Vec<D> momentum = Vec<D>::Zero();
-  std::vector<Vec<D>> wall_force;         ///< reaction exerted by the material on each wall [N per unit thickness]
+  std::vector<Vec<D>>
+      wall_force;  ///< reaction exerted by the material on each wall [N per unit thickness]
   std::vector<Vec<D>> wall_displacement;  ///< [m]
 };
 

@@ -57,7 +57,8 @@ inline void linear_hat(const Vec<D>& x, const GridIndex<D>& grid, Emit&& emit) {
   }
 }
 
-/// uGIMP 1D weight and derivative for distance xi = x_p − X_i, cell size h, particle half-length lp.
+/// uGIMP 1D weight and derivative for distance xi = x_p − X_i, cell size h, particle half-length
+/// lp.
 inline void gimp_1d(double xi, double h, double lp, double& w, double& dw) {
   const double r = std::abs(xi);
   const double sign = xi < 0.0 ? -1.0 : 1.0;
@@ -132,13 +133,13 @@ inline void ugimp_stencil(const Vec<D>& x, const Vec<D>& half_length, const Grid
   }
 }
 
-/// CPDI ([XLS21] eq. (52)-(53); [HH17] §1.1). The domain is the parallelepiped spanned by the full edge vectors
-/// r_k (columns of `domain`), corners x ± r1/2 ± r2/2. Interpolating the hat N_i bilinearly between
-/// the corner values gives S̄_ip = mean_c N_i(x_c) and, by the divergence theorem with the map
-/// x = x_p + Σ ξ_k r_k/2, ∇S̄_ip = Σ_c N_i(x_c) |det J| J^{-T} s_c / V with J = domain/2 and
-/// s_c ∈ {±1}^D the corner's signs; |det J|/V = 2^{-D}, so the corner vector is J^{-T} s_c / 2^D
-/// = domain^{-T} s_c · 2^{1-D}. In 2D this is exactly eq. (53) (its 1/(2V) times the cofactor of
-/// the full edge vectors).
+/// CPDI ([XLS21] eq. (52)-(53); [HH17] §1.1). The domain is the parallelepiped spanned by the full
+/// edge vectors r_k (columns of `domain`), corners x ± r1/2 ± r2/2. Interpolating the hat N_i
+/// bilinearly between the corner values gives S̄_ip = mean_c N_i(x_c) and, by the divergence theorem
+/// with the map x = x_p + Σ ξ_k r_k/2, ∇S̄_ip = Σ_c N_i(x_c) |det J| J^{-T} s_c / V with J =
+/// domain/2 and s_c ∈ {±1}^D the corner's signs; |det J|/V = 2^{-D}, so the corner vector is J^{-T}
+/// s_c / 2^D = domain^{-T} s_c · 2^{1-D}. In 2D this is exactly eq. (53) (its 1/(2V) times the
+/// cofactor of the full edge vectors).
 template <int D>
 inline void cpdi_stencil(const Vec<D>& x, const Mat<D>& domain, const GridIndex<D>& grid,
                          Stencil<D>& stencil) {
@@ -199,16 +200,17 @@ inline void cpdi_compact_stencil(const Vec<D>& x, const Mat<D>& domain, const Gr
     Vec<D> signs;
     for (int k = 0; k < D; ++k) signs[k] = ((corner >> k) & 1) ? 1.0 : -1.0;
     const Vec<D> corner_vector = gradient_scale * (inverse_transpose * signs);
-    detail::linear_hat<D>(position[corner], grid, [&](const IVec<D>& node, double value, const Vec<D>&) {
-      int local = 0, stride = 1;
-      for (int k = 0; k < D; ++k) {
-        local += static_cast<int>(node[k] - first[k]) * stride;
-        stride *= 3;
-      }
-      touched[local] = true;
-      weight[local] += corner_share * value;
-      gradient[local] += value * corner_vector;
-    });
+    detail::linear_hat<D>(position[corner], grid,
+                          [&](const IVec<D>& node, double value, const Vec<D>&) {
+                            int local = 0, stride = 1;
+                            for (int k = 0; k < D; ++k) {
+                              local += static_cast<int>(node[k] - first[k]) * stride;
+                              stride *= 3;
+                            }
+                            touched[local] = true;
+                            weight[local] += corner_share * value;
+                            gradient[local] += value * corner_vector;
+                          });
   }
   stencil.count = 0;
   for (int local = 0; local < box; ++local) {
@@ -231,8 +233,13 @@ template <int D>
 inline void stencil_bounds(ShapeFunctionKind kind, const Vec<D>& x, const Mat<D>& domain,
                            const Vec<D>& half_length, Vec<D>& lower, Vec<D>& upper) {
   switch (kind) {
-    case ShapeFunctionKind::linear: lower = upper = x; return;
-    case ShapeFunctionKind::ugimp: lower = x - half_length; upper = x + half_length; return;
+    case ShapeFunctionKind::linear:
+      lower = upper = x;
+      return;
+    case ShapeFunctionKind::ugimp:
+      lower = x - half_length;
+      upper = x + half_length;
+      return;
     case ShapeFunctionKind::cpdi: {
       const Vec<D> reach = 0.5 * domain.cwiseAbs().rowwise().sum();
       lower = x - reach;

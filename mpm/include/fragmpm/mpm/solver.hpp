@@ -1,5 +1,6 @@
 #pragma once
-// The explicit DP-MPM step (docs/design.md), update-stress-last with a FLIP/PIC blend ([XLS21] eq. (64)-(66)).
+// The explicit DP-MPM step (docs/design.md), update-stress-last with a FLIP/PIC blend ([XLS21] eq.
+// (64)-(66)).
 #include <limits>
 #include <memory>
 #include <optional>
@@ -54,13 +55,15 @@ class Solver {
   double time() const;
   long long step_count() const;
   const EnergyAccumulators& accumulators() const;
-  const SeriesRow<D>& last_row() const;   ///< row of the most recent step (or the initial state)
+  const SeriesRow<D>& last_row() const;  ///< row of the most recent step (or the initial state)
   Vec<D> wall_displacement(std::size_t wall) const;
   /// CFL limit (with C_cfl) from the current state: the adaptive Δt of the next step [s].
   double stable_dt() const;
 
-  /// Restores a checkpointed state (time, step, accumulators, particles must come from the same problem).
-  void restore(double time, long long step, const EnergyAccumulators& totals, Particles<D> particles);
+  /// Restores a checkpointed state (time, step, accumulators, particles must come from the same
+  /// problem).
+  void restore(double time, long long step, const EnergyAccumulators& totals,
+               Particles<D> particles);
 
  private:
   struct Impl;

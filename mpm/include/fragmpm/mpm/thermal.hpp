@@ -14,27 +14,35 @@
 
 namespace fragmpm::mpm {
 
-/// U′(J) = K ln J / J [Pa], the derivative of the volumetric energy U = K/2 (ln J)² ([XLS21] eq. (16)).
-inline double volumetric_energy_slope(double bulk_modulus, double J) { return bulk_modulus * std::log(J) / J; }
+/// U′(J) = K ln J / J [Pa], the derivative of the volumetric energy U = K/2 (ln J)² ([XLS21] eq.
+/// (16)).
+inline double volumetric_energy_slope(double bulk_modulus, double J) {
+  return bulk_modulus * std::log(J) / J;
+}
 
-/// Thermal part of the Kirchhoff stress, a pressure times I: τ_θ = J ∂(ρ₀M)/∂J = −3αK(θ − θ₀)(1 − ln J)/J
-/// ([XLS21] eq. (3), (6); docs/design.md). Undamaged; damage degrades it together with the rest of the stress. [Pa]
+/// Thermal part of the Kirchhoff stress, a pressure times I: τ_θ = J ∂(ρ₀M)/∂J = −3αK(θ − θ₀)(1 −
+/// ln J)/J
+/// ([XLS21] eq. (3), (6); docs/design.md). Undamaged; damage degrades it together with the rest of
+/// the stress. [Pa]
 inline double thermal_kirchhoff_pressure(double bulk_modulus, double expansion, double temperature,
                                          double reference_temperature, double J) {
-  return -3.0 * expansion * bulk_modulus * (temperature - reference_temperature) * (1.0 - std::log(J)) / J;
+  return -3.0 * expansion * bulk_modulus * (temperature - reference_temperature) *
+         (1.0 - std::log(J)) / J;
 }
 
 /// Thermal part of the Cauchy stress σ_θ = τ_θ / J (in-plane block in 2D) [Pa].
 template <int D>
 Mat<D> thermal_cauchy_stress(double bulk_modulus, double expansion, double temperature,
                              double reference_temperature, double J) {
-  return (thermal_kirchhoff_pressure(bulk_modulus, expansion, temperature, reference_temperature, J) / J) *
+  return (thermal_kirchhoff_pressure(bulk_modulus, expansion, temperature, reference_temperature,
+                                     J) /
+          J) *
          Mat<D>::Identity();
 }
 
 /// Fraction of the volumetric coupling energy M that damage d leaves: (1 − d) for isotropic
-/// degradation ([XLS21] eq. (5)); with tensile-only degradation ([HH17] eq. (26)-(27)) a compressed particle
-/// (J < 1) keeps its volumetric response, so its coupling is undegraded.
+/// degradation ([XLS21] eq. (5)); with tensile-only degradation ([HH17] eq. (26)-(27)) a compressed
+/// particle (J < 1) keeps its volumetric response, so its coupling is undegraded.
 inline double coupling_fraction(double damage, Degradation degradation, double J) {
   if (degradation == Degradation::tensile_spectral && J < 1.0) return 1.0;
   return 1.0 - damage;
@@ -48,8 +56,10 @@ inline double coupling_fraction(double damage, Degradation degradation, double J
 /// to its starting temperature to round-off, as the reversible thermoelastic process must.
 /// `density0` ρ₀ [kg/m³], `specific_heat` c [J/(kg K)].
 inline double adiabatic_temperature_ratio(double bulk_modulus, double expansion, double density0,
-                                          double specific_heat, double fraction, double J_from, double J_to) {
-  const double change = volumetric_energy_slope(bulk_modulus, J_to) - volumetric_energy_slope(bulk_modulus, J_from);
+                                          double specific_heat, double fraction, double J_from,
+                                          double J_to) {
+  const double change =
+      volumetric_energy_slope(bulk_modulus, J_to) - volumetric_energy_slope(bulk_modulus, J_from);
   return std::exp(-3.0 * expansion * fraction * change / (density0 * specific_heat));
 }
 
@@ -59,15 +69,17 @@ inline double adiabatic_temperature_ratio(double bulk_modulus, double expansion,
 /// `dissipated`, so the heat equals the recorded damage dissipation plus the coupling term). [J/m³]
 inline double damage_heat_density(double degradable_energy, double bulk_modulus, double expansion,
                                   double reference_temperature, double J, double damage_increment) {
-  return (degradable_energy + 3.0 * expansion * reference_temperature * volumetric_energy_slope(bulk_modulus, J)) *
+  return (degradable_energy +
+          3.0 * expansion * reference_temperature * volumetric_energy_slope(bulk_modulus, J)) *
          damage_increment;
 }
 
-/// Explicit conduction limit Δt ≤ C ρ c h² / (2 D κ) (docs/design.md), smallest over the particles with
-/// ρ = m / (V₀ J) the current density. Infinite when the thermal module is off or nothing conducts.
-/// `courant` C: 1 gives the stability limit itself. [s]
+/// Explicit conduction limit Δt ≤ C ρ c h² / (2 D κ) (docs/design.md), smallest over the particles
+/// with ρ = m / (V₀ J) the current density. Infinite when the thermal module is off or nothing
+/// conducts. `courant` C: 1 gives the stability limit itself. [s]
 template <int D>
-double thermal_stable_time_step(const Problem<D>& problem, const Particles<D>& particles, double courant);
+double thermal_stable_time_step(const Problem<D>& problem, const Particles<D>& particles,
+                                double courant);
 
 /// Heat content relative to the reference temperatures, Σ m_p c_p (θ_p − θ₀) [J per unit thickness
 /// in 2D]; 0 when the module is off.

@@ -1,5 +1,6 @@
 #pragma once
-// Prescribed rigid-wall velocity as a function of time, with its exact time integral (displacement).
+// Prescribed rigid-wall velocity as a function of time, with its exact time integral
+// (displacement).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -12,7 +13,8 @@ enum class HistoryKind { constant, ramp, sinusoid };
 
 /// constant: v(t) = from.
 /// ramp: v = from for t <= t_start, linear to `to` over [t_start, t_end], then `to`.
-/// sinusoid: v = from for t <= t_start, then from + amplitude * sin(2π frequency (t − t_start) + phase)
+/// sinusoid: v = from for t <= t_start, then from + amplitude * sin(2π frequency (t − t_start) +
+/// phase)
 /// ([NBS18] eq. (44) with t₁ = t_start).
 template <int D>
 struct VelocityHistory {
@@ -26,7 +28,8 @@ struct VelocityHistory {
 
   Vec<D> velocity(double t) const {
     switch (kind) {
-      case HistoryKind::constant: return from;
+      case HistoryKind::constant:
+        return from;
       case HistoryKind::ramp: {
         if (t <= t_start) return from;
         if (t >= t_end) return to;
@@ -35,7 +38,8 @@ struct VelocityHistory {
       }
       case HistoryKind::sinusoid:
         if (t <= t_start) return from;
-        return from + amplitude * std::sin(2.0 * std::numbers::pi * frequency * (t - t_start) + phase);
+        return from +
+               amplitude * std::sin(2.0 * std::numbers::pi * frequency * (t - t_start) + phase);
     }
     return from;
   }
@@ -43,7 +47,8 @@ struct VelocityHistory {
   /// ∫_0^t v dt' in closed form, so wall positions do not drift with the time step.
   Vec<D> displacement(double t) const {
     switch (kind) {
-      case HistoryKind::constant: return from * t;
+      case HistoryKind::constant:
+        return from * t;
       case HistoryKind::ramp: {
         if (t <= t_start) return from * t;
         const double ramp_len = t_end - t_start;

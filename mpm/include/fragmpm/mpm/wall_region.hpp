@@ -15,7 +15,8 @@ struct WallRegion {
   bool contains(const Vec<D>& point, const Vec<D>& shift, double tolerance) const {
     if (!bounded) return true;
     const Vec<D> local = point - shift;
-    return (local.array() >= min.array() - tolerance).all() && (local.array() <= max.array() + tolerance).all();
+    return (local.array() >= min.array() - tolerance).all() &&
+           (local.array() <= max.array() + tolerance).all();
   }
 };
 

@@ -49,11 +49,11 @@ struct AnalyzedFrame {
 
 struct AnalyzeResult {
   std::string output_dir;
-  std::string platen;  ///< the wall used for displacements; empty when none
-  std::vector<AnalyzedFrame> frames;                      ///< the selected frames, by frame index
-  std::vector<analysis::FragmentSeriesPoint> series;     ///< every frame of the run
-  std::vector<std::string> files;                         ///< files written
-  std::vector<std::string> replaced_groups;               ///< run-file groups replaced
+  std::string platen;                 ///< the wall used for displacements; empty when none
+  std::vector<AnalyzedFrame> frames;  ///< the selected frames, by frame index
+  std::vector<analysis::FragmentSeriesPoint> series;  ///< every frame of the run
+  std::vector<std::string> files;                     ///< files written
+  std::vector<std::string> replaced_groups;           ///< run-file groups replaced
 };
 
 /// Runs the analysis and writes its outputs, logging one line per step to `log` (may be null).

@@ -1,6 +1,6 @@
 #pragma once
-// Subcommands of `fragmpm`. Each add_*_command registers its CLI11 subcommand; its callback runs the
-// command and stores the process exit code in `result` (0 ok, 2 bad input, 3 numerical failure,
+// Subcommands of `fragmpm`. Each add_*_command registers its CLI11 subcommand; its callback runs
+// the command and stores the process exit code in `result` (0 ok, 2 bad input, 3 numerical failure,
 // 1 anything else).
 #include <CLI/CLI.hpp>
 

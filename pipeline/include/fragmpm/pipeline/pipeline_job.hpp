@@ -17,21 +17,22 @@ struct PipelineError : std::runtime_error {
 };
 
 struct PipelineOptions {
-  std::string image;        ///< the micrograph; replaces `image` of every [[bodies]] entry that has one
-  std::string scene_text;   ///< the scene file's text
-  std::string scene_path;   ///< where the scene came from (messages; relative paths other than image)
+  std::string image;  ///< the micrograph; replaces `image` of every [[bodies]] entry that has one
+  std::string scene_text;  ///< the scene file's text
+  std::string
+      scene_path;  ///< where the scene came from (messages; relative paths other than image)
   std::string output_dir;
-  bool overwrite = false;   ///< allow a non-empty output_dir (files of the same name are replaced)
-  int threads = 0;          ///< OpenMP threads; 0 = the default
-  bool progress = true;     ///< progress line with ETA while running (on a terminal only)
+  bool overwrite = false;  ///< allow a non-empty output_dir (files of the same name are replaced)
+  int threads = 0;         ///< OpenMP threads; 0 = the default
+  bool progress = true;    ///< progress line with ETA while running (on a terminal only)
 };
 
 struct PipelineResult {
-  int exit_code = 0;                 ///< 0, or 3 after a numerical failure (frames so far kept)
-  std::string run_path;              ///< DIR/run.h5 (XDMF beside it: DIR/run.xmf)
-  std::string summary_path;          ///< DIR/summary.txt
-  std::string summary;               ///< its text
-  std::vector<std::string> files;    ///< everything written, in order
+  int exit_code = 0;               ///< 0, or 3 after a numerical failure (frames so far kept)
+  std::string run_path;            ///< DIR/run.h5 (XDMF beside it: DIR/run.xmf)
+  std::string summary_path;        ///< DIR/summary.txt
+  std::string summary;             ///< its text
+  std::vector<std::string> files;  ///< everything written, in order
 };
 
 /// Runs the whole pipeline, logging progress to `log` (may be null). Throws PipelineError for bad

@@ -11,9 +11,10 @@
 namespace fragmpm::pipeline {
 
 struct RunLoopOptions {
-  long long max_steps_override = std::numeric_limits<long long>::max();  ///< stop early (--max-steps)
-  bool write_initial_frame = true;  ///< false when continuing from a checkpoint
-  bool progress = false;            ///< progress line with ETA on stderr (terminal only)
+  long long max_steps_override =
+      std::numeric_limits<long long>::max();  ///< stop early (--max-steps)
+  bool write_initial_frame = true;            ///< false when continuing from a checkpoint
+  bool progress = false;                      ///< progress line with ETA on stderr (terminal only)
 };
 
 struct RunLoopResult {
@@ -24,8 +25,9 @@ struct RunLoopResult {
   double wall_seconds = 0.0;
 };
 
-/// Runs until the problem's stop condition (or the override). A numerical failure is recorded in the
-/// file's /meta, the frames and series written so far stay, and the result says failed.
-RunLoopResult run_loop(mpm::Solver<2>& solver, mpm::RunFile<2>& file, const RunLoopOptions& options);
+/// Runs until the problem's stop condition (or the override). A numerical failure is recorded in
+/// the file's /meta, the frames and series written so far stay, and the result says failed.
+RunLoopResult run_loop(mpm::Solver<2>& solver, mpm::RunFile<2>& file,
+                       const RunLoopOptions& options);
 
 }  // namespace fragmpm::pipeline

@@ -5,9 +5,8 @@
 //   label image:   4-connected patches of one value
 // then grains under the minimum area (and, optionally, those cut by the border) are dropped and
 // the rest measured (segment_grains.hpp).
-#include <string>
-
 #include <opencv2/core/mat.hpp>
+#include <string>
 
 #include "fragmpm/pipeline/segment_grains.hpp"
 #include "fragmpm/pipeline/segment_image.hpp"
@@ -16,8 +15,8 @@
 namespace fragmpm::pipeline {
 
 struct Segmentation {
-  LoadedImage input;           ///< the cropped image, its grey version and the window
-  double pixel_size = 0.0;     ///< [m]
+  LoadedImage input;        ///< the cropped image, its grey version and the window
+  double pixel_size = 0.0;  ///< [m]
   InputKind kind = InputKind::grey;
   /// Global threshold in the image's own grey units (NaN for adaptive thresholds and mask input).
   double threshold_level = 0.0;

@@ -14,10 +14,9 @@
 //                densities (kg/m3 per material, comma-separated)
 // Positions (centroid_x/y, x) are in the image's physical frame: origin at the lower-left corner
 // of the window, x right, y up.
+#include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/core/mat.hpp>
 
 #include "fragmpm/mpm/particles.hpp"
 #include "fragmpm/pipeline/segment.hpp"
@@ -35,7 +34,8 @@ struct GrainFileExtras {
 /// Writes `path`. Refuses to replace an existing file unless `overwrite` (mpm::RunFileError naming
 /// the path, as every HDF5 failure).
 void write_grain_file(const std::string& path, const Segmentation& segmentation,
-                      const mpm::Particles<2>& particles, const GrainFileExtras& extras, bool overwrite);
+                      const mpm::Particles<2>& particles, const GrainFileExtras& extras,
+                      bool overwrite);
 
 /// A grain file read back.
 struct GrainFile {
@@ -43,7 +43,7 @@ struct GrainFile {
   std::string image_path;
   double pixel_size = 0.0;  ///< [m]
   cv::Rect window;
-  cv::Mat labels;           ///< CV_32SC1
+  cv::Mat labels;  ///< CV_32SC1
   std::vector<Grain> grains;
   mpm::Particles<2> particles;
   ParticleSampling sampling;

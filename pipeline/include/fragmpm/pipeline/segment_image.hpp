@@ -2,10 +2,9 @@
 // Image loading and preprocessing for the segmentation: read PNG, TIFF (8- and
 // 16-bit), BMP or JPEG, crop a window, convert colour to grey, and build the 8-bit working image
 // (invert, stretch, denoise, equalise) that the thresholds run on.
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string>
-
-#include <opencv2/core/mat.hpp>
 
 #include "fragmpm/pipeline/segment_options.hpp"
 
@@ -14,9 +13,9 @@ namespace fragmpm::pipeline {
 /// An input image after loading and cropping.
 struct LoadedImage {
   std::string path;
-  cv::Mat image;     ///< the cropped window as read: 1, 3 or 4 channels, any depth
-  cv::Mat grey;      ///< single channel in the image's own units and depth (see to_grey)
-  cv::Rect window;   ///< the window in the input image's pixels (the whole image without crop)
+  cv::Mat image;       ///< the cropped window as read: 1, 3 or 4 channels, any depth
+  cv::Mat grey;        ///< single channel in the image's own units and depth (see to_grey)
+  cv::Rect window;     ///< the window in the input image's pixels (the whole image without crop)
   cv::Size full_size;  ///< size of the input image before cropping
 };
 
@@ -35,9 +34,9 @@ cv::Mat to_grey(const cv::Mat& image);
 
 /// The 8-bit working image and the linear map from the image's own grey units to it.
 struct WorkingImage {
-  cv::Mat image;       ///< CV_8UC1
-  double lo = 0.0;     ///< image level mapped to 0 (before inversion)
-  double hi = 255.0;   ///< image level mapped to 255 (before inversion)
+  cv::Mat image;      ///< CV_8UC1
+  double lo = 0.0;    ///< image level mapped to 0 (before inversion)
+  double hi = 255.0;  ///< image level mapped to 255 (before inversion)
   bool inverted = false;
   /// Gap detection replaced the grey levels (PreprocessOptions::gap_radius): fixed levels no longer
   /// refer to the image's own units.

@@ -2,12 +2,11 @@
 // Options of `fragmpm segment` (docs/design.md) and the error raised for bad segmentation input.
 // Lengths in pixels unless the name says otherwise; the pixel size converts to SI.
 #include <cstdint>
+#include <opencv2/core/types.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <opencv2/core/types.hpp>
 
 namespace fragmpm::pipeline {
 
@@ -30,15 +29,15 @@ enum class DenoiseMethod { none, median, gaussian, bilateral };
 /// Turning a grey image into an 8-bit working image (order: stretch, invert, denoise, gap
 /// detection, equalise).
 struct PreprocessOptions {
-  bool invert = false;             ///< grains darker than the background
+  bool invert = false;  ///< grains darker than the background
   DenoiseMethod denoise = DenoiseMethod::none;
-  int denoise_radius = 2;          ///< [px] half-width of the filter window (σ for gaussian)
+  int denoise_radius = 2;  ///< [px] half-width of the filter window (σ for gaussian)
   /// [px] 0 = off. For packed grains of any brightness separated by dark gaps (photographs of
   /// sand and gravel): the working image becomes 255 minus the black top-hat with a disk of this
   /// radius, so features darker than their surroundings and narrower than about twice the radius
   /// (the gaps) are dark and everything broader (the grains, bright or dark) is bright.
   int gap_radius = 0;
-  bool equalize = false;           ///< CLAHE contrast equalisation
+  bool equalize = false;  ///< CLAHE contrast equalisation
 };
 
 struct ThresholdOptions {
@@ -46,14 +45,15 @@ struct ThresholdOptions {
   /// fixed: grey level in the image's own units (0–255 for 8-bit, 0–65535 for 16-bit); grains are
   /// the pixels brighter than it (darker with --invert).
   double level = 0.0;
-  int adaptive_block = 51;         ///< adaptive: odd window width [px] of the local mean
-  double adaptive_offset = 5.0;    ///< adaptive: a grain pixel exceeds the local mean by more than this (8-bit levels)
+  int adaptive_block = 51;  ///< adaptive: odd window width [px] of the local mean
+  double adaptive_offset =
+      5.0;  ///< adaptive: a grain pixel exceeds the local mean by more than this (8-bit levels)
 };
 
 /// Morphological clean-up of the thresholded mask.
 struct CleanupOptions {
-  int open_radius = 1;    ///< [px] opening removes specks and thin bridges; 0 = off
-  int close_radius = 0;   ///< [px] closing fills thin cracks; 0 = off
+  int open_radius = 1;   ///< [px] opening removes specks and thin bridges; 0 = off
+  int close_radius = 0;  ///< [px] closing fills thin cracks; 0 = off
   /// Before splitting, background regions enclosed by grain and no larger than this [px] are filled
   /// (specks and pits inside grains would otherwise split them); larger ones may be pores between
   /// touching grains and are kept. 0 = off.
@@ -85,20 +85,20 @@ struct ClassMaskOptions {
 
 struct SegmentOptions {
   std::string image_path;
-  double pixel_size = 0.0;           ///< [m], must be > 0
-  std::optional<cv::Rect> crop;      ///< window x, y, w, h in pixels of the input image
+  double pixel_size = 0.0;       ///< [m], must be > 0
+  std::optional<cv::Rect> crop;  ///< window x, y, w, h in pixels of the input image
   InputKind input = InputKind::grey;
   PreprocessOptions preprocess;
   ThresholdOptions threshold;
   CleanupOptions cleanup;
   SplitOptions split;
   ClassMaskOptions classes;
-  std::int64_t min_area = 16;        ///< [px] grains with fewer pixels are dropped
+  std::int64_t min_area = 16;  ///< [px] grains with fewer pixels are dropped
   /// [px] 0 = off. After splitting (and dropping grains under min_area), grains grow into the
   /// background by up to this distance, each pixel joining the nearest grain, never merging two:
   /// for packed grains whose dark gaps are boundaries between them rather than pores.
   double grow = 0.0;
-  bool drop_border = false;          ///< drop grains cut by the (cropped) image border
+  bool drop_border = false;  ///< drop grains cut by the (cropped) image border
   /// Grey-level band limits, ascending, in the image's own units: a grain whose mean grey level is
   /// below phase_bands[0] is phase 0, between [0] and [1] phase 1, …; empty = one phase.
   std::vector<double> phase_bands;

@@ -4,9 +4,8 @@
 // background carry the surface flag that makes touching grains separable from the first step
 // ([HH17] §2.4).
 #include <cstdint>
-#include <vector>
-
 #include <opencv2/core/mat.hpp>
+#include <vector>
 
 #include "fragmpm/mpm/particles.hpp"
 #include "fragmpm/pipeline/segment_grains.hpp"
@@ -14,8 +13,9 @@
 namespace fragmpm::pipeline {
 
 struct ParticleSampling {
-  double cell_size = 0.0;      ///< grid spacing h [m]
-  int particles_per_cell = 2;  ///< n per direction: particle spacing h/n, n² particles per cell (2D)
+  double cell_size = 0.0;  ///< grid spacing h [m]
+  int particles_per_cell =
+      2;  ///< n per direction: particle spacing h/n, n² particles per cell (2D)
 };
 
 /// Material points of the grains of `labels` (CV_32SC1, 0 = background), in the physical frame of

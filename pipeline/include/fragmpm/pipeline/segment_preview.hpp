@@ -2,9 +2,8 @@
 // The segmentation preview: the micrograph with every grain's outline in its own
 // colour and its label number at its centroid; grains that were dropped (too small, cut by the
 // border) are tinted red; a strip below states the grain count, median size and pixel size.
-#include <string>
-
 #include <opencv2/core/mat.hpp>
+#include <string>
 
 #include "fragmpm/pipeline/segment.hpp"
 

@@ -3,10 +3,9 @@
 // on a dark background, with their ground-truth labels and analytic areas. Used by the tests and by
 // the `fragmpm_make_images` tool that writes images/synthetic/.
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/core/mat.hpp>
 
 namespace fragmpm::pipeline {
 
@@ -18,8 +17,8 @@ struct SyntheticGrain {
 
 struct SyntheticImage {
   std::string name;
-  cv::Mat image;   ///< CV_8UC1, grains bright on a dark background
-  cv::Mat truth;   ///< CV_32SC1 ground truth: grains[k] has label k + 1, 0 = background
+  cv::Mat image;  ///< CV_8UC1, grains bright on a dark background
+  cv::Mat truth;  ///< CV_32SC1 ground truth: grains[k] has label k + 1, 0 = background
   std::vector<SyntheticGrain> grains;
 };
 

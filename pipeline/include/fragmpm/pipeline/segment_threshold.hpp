@@ -1,8 +1,7 @@
 #pragma once
 // Thresholding the working image into a grain mask and cleaning the mask up.
-#include <string>
-
 #include <opencv2/core/mat.hpp>
+#include <string>
 
 #include "fragmpm/pipeline/segment_image.hpp"
 #include "fragmpm/pipeline/segment_options.hpp"

@@ -5,7 +5,6 @@
 // OpenCV's cv::watershed ranks pixels by the colour difference to their neighbour rather than by
 // height, so it cannot flood a distance map; the priority flood here does (Meyer's algorithm).
 #include <cstdint>
-
 #include <opencv2/core/mat.hpp>
 
 #include "fragmpm/pipeline/segment_options.hpp"
@@ -22,7 +21,8 @@ cv::Mat connected_labels(const cv::Mat& mask);
 /// (a watershed of −height); without one (empty Mat) every pixel joins the nearest seed in
 /// 4-connected steps (breadth-first, ties to the earlier seed in raster order). Pixels of
 /// `allowed` not connected to any seed stay 0.
-cv::Mat flood_labels(const cv::Mat& seeds, const cv::Mat& allowed, const cv::Mat& height = cv::Mat());
+cv::Mat flood_labels(const cv::Mat& seeds, const cv::Mat& allowed,
+                     const cv::Mat& height = cv::Mat());
 
 /// Splits a binary grain mask (CV_8UC1) into grains: markers are maxima of the distance transform
 /// within `marker_spacing` pixels, the flood follows the distance map, and neighbouring pieces are
@@ -43,7 +43,8 @@ int compact_labels(cv::Mat& labels);
 std::int64_t remove_small_grains(cv::Mat& labels, std::int64_t min_area, cv::Mat& removed);
 
 /// Grows every grain into the background pixels within Euclidean distance `radius` [px] of some
-/// grain; each such pixel joins the grain nearest to it in 4-connected steps, so grains never merge.
+/// grain; each such pixel joins the grain nearest to it in 4-connected steps, so grains never
+/// merge.
 void grow_labels(cv::Mat& labels, double radius);
 
 }  // namespace fragmpm::pipeline

@@ -6,8 +6,8 @@
 // integer exponent ("cm3", "m^3", "s^-1", "m²"), multiplied by a space, '*' or '·' and divided by
 // '/'. After a '/' only one factor or a parenthesised group is the denominator, so "J/(kg K)" is
 // accepted and the ambiguous "J/kg K" is refused.
-// Symbols: m, g, s, K, Pa, N, J, W, Hz, rad, deg, bar, C / °C / degC (Celsius: only on its own, since
-// it is an affine scale: θ[K] = θ[°C] + 273.15).
+// Symbols: m, g, s, K, Pa, N, J, W, Hz, rad, deg, bar, C / °C / degC (Celsius: only on its own,
+// since it is an affine scale: θ[K] = θ[°C] + 273.15).
 #include <stdexcept>
 #include <string>
 #include <string_view>

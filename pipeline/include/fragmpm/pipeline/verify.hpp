@@ -18,7 +18,7 @@ struct VerifyRow {
   int level = 0;
   double cell_size = 0.0;  ///< [m]
   long long particles = 0;
-  double dt = 0.0;         ///< largest (typical) step used [s]
+  double dt = 0.0;  ///< largest (typical) step used [s]
   long long steps = 0;
   double wall_seconds = 0.0;
   std::string metric;
@@ -50,14 +50,15 @@ const std::vector<VerifyCase>& verify_cases();
 /// V1: axial vibration of an elastic bar (docs/verification.md), CPDI and linear shape functions.
 std::vector<VerifyRow> verify_bar(const VerifyOptions& options);
 
-/// V2: sliding block with four friction laws against the rigid-block oracle (docs/verification.md; [NBS18] §3):
-/// end-of-slide velocity and friction work per variant (law) and cell size.
+/// V2: sliding block with four friction laws against the rigid-block oracle (docs/verification.md;
+/// [NBS18] §3): end-of-slide velocity and friction work per variant (law) and cell size.
 std::vector<VerifyRow> verify_sliding_block(const VerifyOptions& options);
 
 /// One level of V2: `variant` is a law ("coulomb", "velocity-dependent", "adhesion",
-/// "static-dynamic"), optionally suffixed "-computed-normal" (normals from mass gradients instead of
-/// the specified (0, 1)); returns the velocity and friction-work rows.
-std::vector<VerifyRow> verify_sliding_block_level(const std::string& variant, int level, double cell_size);
+/// "static-dynamic"), optionally suffixed "-computed-normal" (normals from mass gradients instead
+/// of the specified (0, 1)); returns the velocity and friction-work rows.
+std::vector<VerifyRow> verify_sliding_block_level(const std::string& variant, int level,
+                                                  double cell_size);
 
 /// P2: self-contact against two-body contact and a single field ([HH17] §3.1).
 std::vector<VerifyRow> verify_billet(const VerifyOptions& options);
@@ -78,12 +79,13 @@ std::vector<VerifyRow> verify_contact_temperature(const VerifyOptions& options);
 /// V7: oscillating-block frictional heating over CFL factors, first- and second-order heating
 /// ([NBS18] §3, Fig. 6-7): friction work of one stick–slide–stick interval against its C → 0 limit.
 std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options);
-/// P3: disk squish ([XLS21] §4.4; [HH17] Fig. 9) isothermal, coupled and with thermal-softening friction:
-/// peak contact temperature [K], disk speed [m/s] and friction work per variant.
+/// P3: disk squish ([XLS21] §4.4; [HH17] Fig. 9) isothermal, coupled and with thermal-softening
+/// friction: peak contact temperature [K], disk speed [m/s] and friction work per variant.
 std::vector<VerifyRow> verify_disk_squish(const VerifyOptions& options);
 
 /// Observed order of convergence log(e_a/e_b)/log(h_a/h_b) between consecutive levels of one
-/// variant and metric, in Δt instead of h when both levels share the cell size; NaN where undefined.
+/// variant and metric, in Δt instead of h when both levels share the cell size; NaN where
+/// undefined.
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
 
 /// Writes DIR/CASE.csv (creating DIR) and prints the table with orders and PASS/FAIL against each
