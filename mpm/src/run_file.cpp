@@ -180,15 +180,16 @@ struct RunFile<D>::Impl {
     std::vector<XdmfFrame> light;
     for (const Frame& frame : frames) {
       XdmfFrame f;
-      f.group = "/frames/" + frame_name(frame.index);
+      f.group = std::string("/frames/") + frame_name(frame.index);
       f.time = frame.time;
       f.points = frame.points;
       for (const std::string& name : frame.fields) {
         if (name == "x") continue;  // the geometry
         const FieldInfo info = field_info<D>(name);
         const bool padded = D == 2 && info.kind != XdmfField::Kind::scalar;
-        f.fields.push_back({name, info.kind, info.number,
-                            padded ? "/" + padded_group(frame.index) + "/" + name : ""});
+        f.fields.push_back(
+            {name, info.kind, info.number,
+             padded ? std::string("/") + padded_group(frame.index) + "/" + name : ""});
       }
       light.push_back(std::move(f));
     }
