@@ -16,7 +16,7 @@ inline void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<
   else if constexpr (Kind == ShapeFunctionKind::ugimp)
     ugimp_stencil<D>(P.x[p], 0.5 * P.domain[p].diagonal().cwiseAbs(), grid, s);
   else
-    cpdi_compact_stencil<D>(P.x[p], P.domain[p], grid, s);
+    cpdi_stencil<D>(P.x[p], P.domain[p], grid, s);
 }
 
 /// Runs body(p, stencil) over the particles p with keep(p), strip by strip in two parity passes, so
