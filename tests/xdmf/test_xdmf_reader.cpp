@@ -21,30 +21,14 @@
 #include <string>
 #include <vector>
 
+#include "../support/temp_run_path.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
 namespace fragmpm::mpm {
 namespace {
 
-/// A run-file path unique to this process, removed with its .xmf at exit.
 std::string temp_path(const std::string& name) {
-  struct Cleanup {
-    std::vector<std::string> paths;
-    ~Cleanup() {
-      std::error_code ec;
-      for (const std::string& p : paths) {
-        std::filesystem::remove(p, ec);
-        std::filesystem::remove(std::filesystem::path(p).replace_extension(".xmf"), ec);
-      }
-    }
-  };
-  static Cleanup cleanup;
-  const std::string path =
-      ::testing::TempDir() + "fragmpm_xdmf_" + std::to_string(getpid()) + "_" + name + ".h5";
-  std::filesystem::remove(path);
-  std::filesystem::remove(std::filesystem::path(path).replace_extension(".xmf"));
-  cleanup.paths.push_back(path);
-  return path;
+  return test_support::temp_run_path("fragmpm_xdmf", name);
 }
 
 template <int D>
