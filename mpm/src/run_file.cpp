@@ -256,6 +256,14 @@ RunFile<D> RunFile<D>::create(const std::string& path, const RunMeta& meta, bool
   momentum.set_attribute("units",
                          D == 2 ? "kg/s (momentum per unit thickness, kg m/s per m)" : "kg m/s");
   momentum.set_attribute("description", "total momentum, steps x D");
+  const std::size_t axial_size = D == 2 ? 1 : 3;
+  const h5::Dataset angular = series.create_extendible<double>("angular_momentum", {axial_size});
+  angular.set_attribute("units", D == 2 ? "kg m/s (angular momentum per unit thickness, kg m²/s "
+                                          "per m), about the origin"
+                                        : "kg m²/s, about the origin");
+  angular.set_attribute("description",
+                        D == 2 ? "total angular momentum (out-of-plane component), steps x 1"
+                               : "total angular momentum, steps x 3");
   for (const std::string& w : meta.wall_names) {
     const h5::Dataset force =
         series.create_extendible<double>(wall_force_name(w), {std::size_t{D}});
@@ -347,6 +355,14 @@ void RunFile<D>::append_series(const std::vector<SeriesRow<D>>& rows) {
   std::vector<Vec<D>> vectors(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].momentum;
   impl_->series_dataset("momentum").append_rows(pack<D>(vectors));
+  // Run files from before the angular momentum series resume without it.
+  if (impl_->series.count("angular_momentum")) {
+    constexpr int A = Axial<D>::RowsAtCompileTime;
+    std::vector<double> angular(rows.size() * A);
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      for (int a = 0; a < A; ++a) angular[k * A + a] = rows[k].angular_momentum[a];
+    impl_->series_dataset("angular_momentum").append_rows(angular);
+  }
   for (std::size_t w = 0; w < walls; ++w) {
     for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].wall_force[w];
     impl_->series_dataset(wall_force_name(impl_->wall_names[w])).append_rows(pack<D>(vectors));
@@ -381,6 +397,7 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
   g.set_attribute("complete", std::int64_t{0});
   g.write("x", pack<D>(p.x), {n, d});
   g.write("v", pack<D>(p.v), {n, d});
+  g.write("affine", pack<D>(p.affine), {n, d, d});
   g.write("F", pack<D>(p.F), {n, d, d});
   g.write("volume0", p.volume0, {n});
   g.write("mass", p.mass, {n});
@@ -421,6 +438,8 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
   p.resize(n, g.exists("temperature"));
   unpack<D>(read_shaped<double>(g, "x", {n, d}), p.x);
   unpack<D>(read_shaped<double>(g, "v", {n, d}), p.v);
+  // Run files from before APIC have no affine matrices: zero, as a FLIP run carries.
+  if (g.exists("affine")) unpack<D>(read_shaped<double>(g, "affine", {n, d, d}), p.affine);
   unpack<D>(read_shaped<double>(g, "F", {n, d, d}), p.F);
   p.volume0 = read_shaped<double>(g, "volume0", {n});
   p.mass = read_shaped<double>(g, "mass", {n});

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "fragmpm/mpm/thermal.hpp"
+#include "step/affine_motion.hpp"
 #include "step/constitutive_update.hpp"
 #include "step/stages.hpp"
 
@@ -104,6 +105,17 @@ double stable_time_step(const Problem<D>& problem, const Particles<D>& particles
   return std::min(thermal_limit, cfl * problem.grid.cell_size / (std::sqrt(double(D)) * max_speed));
 }
 
+namespace {
+/// FLIP carries no affine field: whatever a scene set (the velocity gradient of a spin) would
+/// otherwise count in the kinetic energy and angular momentum of a run that never transfers it.
+template <int D>
+void settle_affine(Problem<D>& problem) {
+  auto& P = problem.particles;
+  if (P.affine.size() != P.size() || problem.time.transfer == Transfer::flip)
+    P.affine.assign(P.size(), Mat<D>::Zero());
+}
+}  // namespace
+
 template <int D>
 struct Solver<D>::Impl {
   StepState<D> state;
@@ -111,6 +123,7 @@ struct Solver<D>::Impl {
   explicit Impl(Problem<D> p) {
     StepState<D>& s = state;
     s.problem = std::move(p);
+    settle_affine(s.problem);
     const Problem<D>& problem = s.problem;
     for (const auto& m : problem.materials) {
       s.models.push_back({m.bulk_modulus, m.shear_modulus});
@@ -151,10 +164,15 @@ struct Solver<D>::Impl {
     const auto& P = s.problem.particles;
     double kinetic = 0.0, strain = 0.0;
     const std::int64_t n = static_cast<std::int64_t>(P.size());
+    const bool affine = s.problem.time.transfer == Transfer::apic;
+    const ShapeFunctionKind kind = s.problem.grid.shape_function;
 #pragma omp parallel for reduction(+ : kinetic, strain) schedule(static)
     for (std::int64_t p = 0; p < n; ++p) {
       strain += P.volume0[p] * update_constitutive<D, Thermal, false>(s, p, 0.0).stored;
       kinetic += 0.5 * P.mass[p] * P.v[p].squaredNorm();
+      if (affine)
+        kinetic += affine_kinetic_energy<D>(
+            P.mass[p], P.affine[p], domain_second_moment<D>(P, static_cast<std::size_t>(p), kind));
     }
     s.totals = EnergyAccumulators{};
     s.totals.initial_energy = kinetic + strain;
@@ -164,7 +182,14 @@ struct Solver<D>::Impl {
     s.row.thermal = thermal_energy<D>(s.problem, P);
     s.row.totals = s.totals;
     s.row.momentum = Vec<D>::Zero();
-    for (std::size_t p = 0; p < P.size(); ++p) s.row.momentum += P.mass[p] * P.v[p];
+    s.row.angular_momentum = Axial<D>::Zero();
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      s.row.momentum += P.mass[p] * P.v[p];
+      s.row.angular_momentum += P.mass[p] * cross<D>(P.x[p], P.v[p]);
+      if (affine)
+        s.row.angular_momentum +=
+            P.mass[p] * axial<D>(P.affine[p] * domain_second_moment<D>(P, p, kind));
+    }
     s.row.wall_force.assign(s.problem.walls.size(), Vec<D>::Zero());
     s.row.wall_displacement.assign(s.problem.walls.size(), Vec<D>::Zero());
     s.next_dt_limit = stable_time_step<D>(s.problem, P, s.problem.time.cfl);
@@ -175,25 +200,32 @@ struct Solver<D>::Impl {
 
   /// The step, written once: every stage a scene does not need is compiled out (Partitioned,
   /// Thermal) or skipped by the plan fixed at setup.
-  template <ShapeFunctionKind Kind, bool Partitioned, bool Thermal>
+  template <ShapeFunctionKind Kind, bool Partitioned, bool Thermal, bool Affine>
   std::optional<NumericalFailure> advance(double dt) {
     StepState<D>& s = state;
     if constexpr (Partitioned) partition_nodes<D, Kind>(s);
-    scatter_to_grid<D, Kind, Partitioned>(s);
+    scatter_to_grid<D, Kind, Partitioned, Affine>(s);
     if constexpr (Thermal) thermal_begin<D, Kind, Partitioned>(s);  // nodal θⁿ for friction
     update_grid_velocities(s, dt);
     if constexpr (Partitioned) exchange_contact_momentum(s, dt);
     if (!s.problem.walls.empty()) apply_walls(s, dt);
     if constexpr (Thermal) thermal_finish<D, Kind, Partitioned>(s, dt);  // [XLS21] Alg. 1
-    return grid_to_particles<D, Kind, Partitioned, Thermal>(s, dt);
+    return grid_to_particles<D, Kind, Partitioned, Thermal, Affine>(s, dt);
   }
 
-  template <ShapeFunctionKind Kind>
+  template <ShapeFunctionKind Kind, bool Affine>
   std::optional<NumericalFailure> advance_with_modules(double dt) {
     const bool partitioned = state.partition.this_step;
     if (state.thermal)
-      return partitioned ? advance<Kind, true, true>(dt) : advance<Kind, false, true>(dt);
-    return partitioned ? advance<Kind, true, false>(dt) : advance<Kind, false, false>(dt);
+      return partitioned ? advance<Kind, true, true, Affine>(dt)
+                         : advance<Kind, false, true, Affine>(dt);
+    return partitioned ? advance<Kind, true, false, Affine>(dt)
+                       : advance<Kind, false, false, Affine>(dt);
+  }
+  template <ShapeFunctionKind Kind>
+  std::optional<NumericalFailure> advance_with_modules(double dt) {
+    return state.problem.time.transfer == Transfer::apic ? advance_with_modules<Kind, true>(dt)
+                                                         : advance_with_modules<Kind, false>(dt);
   }
 
   std::optional<NumericalFailure> take_step(double dt_cap) {
@@ -299,6 +331,7 @@ template <int D>
 void Solver<D>::restore(double time, long long step, const EnergyAccumulators& totals,
                         Particles<D> particles) {
   impl_->state.problem.particles = std::move(particles);
+  settle_affine(impl_->state.problem);
   if (impl_->state.thermal) impl_->start_thermal();
   impl_->compute_initial_state();
   impl_->state.time = time;

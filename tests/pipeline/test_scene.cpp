@@ -507,7 +507,13 @@ std::string with_second_body(const std::string& body) {
 std::vector<BadScene> bad_scenes() {
   return {
       {"unknown_key", replace(kGood, "cfl = 0.5", "cfl = 0.5\ncfl_max = 1"), "cfl_max",
-       "time.cfl_max", "unknown key: expected one of cfl, dt, pic_fraction, thermal_pic_fraction"},
+       "time.cfl_max",
+       "unknown key: expected one of cfl, dt, transfer, pic_fraction, thermal_pic_fraction"},
+      {"unknown_transfer", replace(kGood, "cfl = 0.5", "cfl = 0.5\ntransfer = \"pic\""), "transfer",
+       "time.transfer", "one of \"flip\""},
+      {"pic_fraction_with_apic",
+       replace(kGood, "cfl = 0.5", "cfl = 0.5\ntransfer = \"apic\"\npic_fraction = 0.1"),
+       "pic_fraction", "time.pic_fraction", "the FLIP/PIC blend is FLIP's"},
       {"thermal_pic_fraction_above_one",
        replace(kGood, "cfl = 0.5", "cfl = 0.5\nthermal_pic_fraction = 1.5"), "thermal_pic_fraction",
        "time.thermal_pic_fraction", "0 <= thermal_pic_fraction <= 1"},

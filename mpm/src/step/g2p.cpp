@@ -1,12 +1,17 @@
 // G2P ([XLS21] eq. (64)-(66)) and the constitutive update that closes the step
 // (update-stress-last): velocities and positions from the grid, F and the CPDI domain by the
-// midpoint increment, then stress, damage and stored energy.
+// midpoint increment, then stress, damage and stored energy. APIC ([JSS15]) sets the velocity to
+// the grid interpolant (no FLIP increment) and keeps the affine matrix C_p = L_p, the particle's
+// velocity gradient: for the linear hat this is [JSS15]'s B_p D_p⁻¹ exactly (D_p is diagonal with
+// entries f(1 − f) h², and S̄ D_p⁻¹ (x_i − x_p) = ∇S̄), and for uGIMP and CPDI it is the gradient
+// the deformation update already uses, exact for a rigid or affine grid motion.
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "step/affine_motion.hpp"
 #include "step/constitutive_update.hpp"
 #include "step/failure_text.hpp"
 #include "step/particle_loops.hpp"
@@ -48,7 +53,7 @@ NumericalFailure inverted_particle(const StepState<D>& state, std::int64_t p, do
 
 }  // namespace
 
-template <int D, ShapeFunctionKind Kind, bool Partitioned, bool Thermal>
+template <int D, ShapeFunctionKind Kind, bool Partitioned, bool Thermal, bool Affine>
 std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt) {
   auto& P = state.problem.particles;
   const NodeFields<D>& N = state.nodes;
@@ -62,12 +67,15 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
          max_speed = 0.0;
   std::int64_t failed = -1;
   const int slots = omp_get_max_threads();
-  size_array(state.momentum_parts, static_cast<std::size_t>(D) * static_cast<std::size_t>(slots));
+  constexpr int A = Axial<D>::RowsAtCompileTime;
+  constexpr std::size_t per_thread = D + A;
+  size_array(state.momentum_parts, per_thread * static_cast<std::size_t>(slots));
   std::fill(state.momentum_parts.begin(), state.momentum_parts.end(), 0.0);
 #pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated) reduction(max : max_speed)
   {
     Stencil<D> s;
     Vec<D> momentum = Vec<D>::Zero();
+    Axial<D> angular_momentum = Axial<D>::Zero();
     std::int64_t first_failed = -1;
 #pragma omp for schedule(static) nowait
     for (std::int64_t p = 0; p < n; ++p) {
@@ -79,12 +87,17 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
         const int f = field_at<D, Partitioned>(state, p, e);
         const Vec<D>& velocity = N.velocity[f][i];
         v_pic += s.weight[e] * velocity;
-        v_change += s.weight[e] * (velocity - N.velocity_lumped[f][i]);
+        if constexpr (!Affine) v_change += s.weight[e] * (velocity - N.velocity_lumped[f][i]);
         velocity_gradient += velocity * s.gradient[e].transpose();
       }
       const Vec<D> displacement = dt * v_pic;
       P.x[p] += displacement;
-      P.v[p] = (1.0 - pic) * (P.v[p] + v_change) + pic * v_pic;
+      if constexpr (Affine) {
+        P.v[p] = v_pic;
+        P.affine[p] = velocity_gradient;
+      } else {
+        P.v[p] = (1.0 - pic) * (P.v[p] + v_change) + pic * v_pic;
+      }
       // [XLS21] eq. (66) updates F with I + Δt L, which stretches a rigidly rotating body by (ωΔt)²
       // per step (a spinning disk builds up stress). The midpoint increment [HW80]
       // (I − ΔtL/2)⁻¹(I + ΔtL/2) agrees to O(Δt²) and is exactly orthogonal for a spin.
@@ -104,6 +117,12 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
       if constexpr (deform_domain)
         if (P.damage[p] >= 1.0) limit_failed_domain<D>(P.domain[p], cell_size);
       kinetic += 0.5 * P.mass[p] * P.v[p].squaredNorm();
+      angular_momentum += P.mass[p] * cross<D>(P.x[p], P.v[p]);
+      if constexpr (Affine) {
+        const Mat<D> moment = domain_second_moment<D>(P, static_cast<std::size_t>(p), Kind);
+        kinetic += affine_kinetic_energy<D>(P.mass[p], P.affine[p], moment);
+        angular_momentum += P.mass[p] * axial<D>(P.affine[p] * moment);
+      }
       gravity_work += P.mass[p] * gravity.dot(displacement);
       if (loaded) load_work += state.load_force[p].dot(displacement);
       momentum += P.mass[p] * P.v[p];
@@ -112,14 +131,19 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
           std::max(max_speed, state.models[P.material[p]].wave_speed(density) + P.v[p].norm());
     }
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
-    for (int k = 0; k < D; ++k) state.momentum_parts[t * D + k] = momentum[k];
+    for (int k = 0; k < D; ++k) state.momentum_parts[t * per_thread + k] = momentum[k];
+    for (int k = 0; k < A; ++k) state.momentum_parts[t * per_thread + D + k] = angular_momentum[k];
 #pragma omp critical(fragmpm_g2p_failure)
     if (first_failed >= 0 && (failed < 0 || first_failed < failed)) failed = first_failed;
   }
   if (failed >= 0) return inverted_particle(state, failed, dt);
   state.row.momentum.setZero();
-  for (std::size_t t = 0; t < static_cast<std::size_t>(slots); ++t)
-    for (int k = 0; k < D; ++k) state.row.momentum[k] += state.momentum_parts[t * D + k];
+  state.row.angular_momentum.setZero();
+  for (std::size_t t = 0; t < static_cast<std::size_t>(slots); ++t) {
+    for (int k = 0; k < D; ++k) state.row.momentum[k] += state.momentum_parts[t * per_thread + k];
+    for (int k = 0; k < A; ++k)
+      state.row.angular_momentum[k] += state.momentum_parts[t * per_thread + D + k];
+  }
   state.row.kinetic = kinetic;
   state.row.strain = strain;
   state.totals.gravity_work += gravity_work;
@@ -131,15 +155,18 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   return std::nullopt;
 }
 
-#define FRAGMPM_INSTANTIATE_KIND(D, K)                                                             \
-  template std::optional<NumericalFailure>                                                         \
-  grid_to_particles<D, ShapeFunctionKind::K, false, false>(StepState<D>&, double);                 \
-  template std::optional<NumericalFailure>                                                         \
-  grid_to_particles<D, ShapeFunctionKind::K, false, true>(StepState<D>&, double);                  \
-  template std::optional<NumericalFailure>                                                         \
-  grid_to_particles<D, ShapeFunctionKind::K, true, false>(StepState<D>&, double);                  \
-  template std::optional<NumericalFailure> grid_to_particles<D, ShapeFunctionKind::K, true, true>( \
-      StepState<D>&, double);
+#define FRAGMPM_INSTANTIATE_ONE(D, K, PARTITIONED, THERMAL, AFFINE) \
+  template std::optional<NumericalFailure>                          \
+  grid_to_particles<D, ShapeFunctionKind::K, PARTITIONED, THERMAL, AFFINE>(StepState<D>&, double);
+#define FRAGMPM_INSTANTIATE_KIND(D, K)               \
+  FRAGMPM_INSTANTIATE_ONE(D, K, false, false, false) \
+  FRAGMPM_INSTANTIATE_ONE(D, K, false, true, false)  \
+  FRAGMPM_INSTANTIATE_ONE(D, K, true, false, false)  \
+  FRAGMPM_INSTANTIATE_ONE(D, K, true, true, false)   \
+  FRAGMPM_INSTANTIATE_ONE(D, K, false, false, true)  \
+  FRAGMPM_INSTANTIATE_ONE(D, K, false, true, true)   \
+  FRAGMPM_INSTANTIATE_ONE(D, K, true, false, true)   \
+  FRAGMPM_INSTANTIATE_ONE(D, K, true, true, true)
 #define FRAGMPM_INSTANTIATE(D)        \
   FRAGMPM_INSTANTIATE_KIND(D, linear) \
   FRAGMPM_INSTANTIATE_KIND(D, ugimp)  \
@@ -148,5 +175,6 @@ FRAGMPM_INSTANTIATE(2)
 FRAGMPM_INSTANTIATE(3)
 #undef FRAGMPM_INSTANTIATE
 #undef FRAGMPM_INSTANTIATE_KIND
+#undef FRAGMPM_INSTANTIATE_ONE
 
 }  // namespace fragmpm::mpm

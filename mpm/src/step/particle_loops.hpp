@@ -8,20 +8,21 @@
 
 namespace fragmpm::mpm {
 
-template <int D, ShapeFunctionKind Kind>
+/// Offsets: also fill the node offsets x_i − x_p (the APIC transfer).
+template <int D, ShapeFunctionKind Kind, bool Offsets = false>
 inline void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<D>& grid,
                          Stencil<D>& s) {
   if constexpr (Kind == ShapeFunctionKind::linear)
-    linear_stencil<D>(P.x[p], grid, s);
+    linear_stencil<D, Offsets>(P.x[p], grid, s);
   else if constexpr (Kind == ShapeFunctionKind::ugimp)
-    ugimp_stencil<D>(P.x[p], 0.5 * P.domain[p].diagonal().cwiseAbs(), grid, s);
+    ugimp_stencil<D, Offsets>(P.x[p], 0.5 * P.domain[p].diagonal().cwiseAbs(), grid, s);
   else
-    cpdi_stencil<D>(P.x[p], P.domain[p], grid, s);
+    cpdi_stencil<D, Offsets>(P.x[p], P.domain[p], grid, s);
 }
 
 /// Runs body(p, stencil) over the particles p with keep(p), strip by strip in two parity passes, so
 /// that bodies scattering into the stencil's nodes never race. No stencil is built for the others.
-template <int D, ShapeFunctionKind Kind, class Keep, class Body>
+template <int D, ShapeFunctionKind Kind, bool Offsets = false, class Keep, class Body>
 void scatter_particles_where(const StepState<D>& state, Keep&& keep, Body&& body) {
   const ScatterOrder& order = state.order;
   const std::int64_t strips = static_cast<std::int64_t>(order.strip_start.size()) - 1;
@@ -35,7 +36,7 @@ void scatter_particles_where(const StepState<D>& state, Keep&& keep, Body&& body
         for (std::int64_t k = order.strip_start[strip]; k < order.strip_start[strip + 1]; ++k) {
           const std::int64_t p = order.strip_order[k];
           if (!keep(p)) continue;
-          fill_stencil<D, Kind>(state.problem.particles, p, state.grid, s);
+          fill_stencil<D, Kind, Offsets>(state.problem.particles, p, state.grid, s);
           body(p, s);
         }
       }
@@ -43,9 +44,9 @@ void scatter_particles_where(const StepState<D>& state, Keep&& keep, Body&& body
   }
 }
 
-template <int D, ShapeFunctionKind Kind, class Body>
+template <int D, ShapeFunctionKind Kind, bool Offsets = false, class Body>
 void scatter_particles(const StepState<D>& state, Body&& body) {
-  scatter_particles_where<D, Kind>(
+  scatter_particles_where<D, Kind, Offsets>(
       state, [](std::int64_t) { return true; }, body);
 }
 

@@ -31,8 +31,9 @@ void update_damage_field(StepState<D>& state);
 template <int D, ShapeFunctionKind Kind>
 void partition_nodes(StepState<D>& state);
 
-/// P2G ([XLS21] eq. (47)-(49)) into the fields of the field map. (scatter.cpp)
-template <int D, ShapeFunctionKind Kind, bool Partitioned>
+/// P2G ([XLS21] eq. (47)-(49)) into the fields of the field map; Affine adds the APIC momentum
+/// of C_p ([JSS15]). (scatter.cpp)
+template <int D, ShapeFunctionKind Kind, bool Partitioned, bool Affine>
 void scatter_to_grid(StepState<D>& state);
 /// Lumped and updated nodal velocities. (grid_update.cpp)
 template <int D>
@@ -52,8 +53,9 @@ void thermal_begin(StepState<D>& state);
 template <int D, ShapeFunctionKind Kind, bool Partitioned>
 void thermal_finish(StepState<D>& state, double dt);
 
-/// G2P ([XLS21] eq. (64)-(66)) and the constitutive update that closes the step. (g2p.cpp)
-template <int D, ShapeFunctionKind Kind, bool Partitioned, bool Thermal>
+/// G2P ([XLS21] eq. (64)-(66)), FLIP or (Affine) APIC, and the constitutive update that closes
+/// the step. (g2p.cpp)
+template <int D, ShapeFunctionKind Kind, bool Partitioned, bool Thermal, bool Affine>
 std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt);
 
 }  // namespace fragmpm::mpm

@@ -108,8 +108,9 @@ struct StepState {
   PartitionState<D> partition;
   ContactSums<D> contact;
   WallScratch<D> wall_scratch;
-  std::vector<Vec<D>> load_force;      ///< f_p of this step [N per unit thickness in 2D]
-  std::vector<double> momentum_parts;  ///< per-thread momentum sums of G2P, D per thread
+  std::vector<Vec<D>> load_force;  ///< f_p of this step [N per unit thickness in 2D]
+  /// Per-thread sums of G2P: momentum (D) and angular momentum (1 in 2D, 3 in 3D) per thread.
+  std::vector<double> momentum_parts;
   /// ψ_t per particle from the last constitutive update (thermal and damage only): the damage
   /// heat of the next thermal stage is booked from it.
   std::vector<double> degradable;

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 
 #include "fragmpm/pipeline/commands.hpp"
 #include "fragmpm/pipeline/scene.hpp"
@@ -47,6 +48,7 @@ struct VerifyArguments {
   std::string output = "verify-out";
   bool quick = false;
   bool stability = false;
+  std::vector<std::string> scenes;
   bool list = false;
   int threads = 0;
 };
@@ -62,7 +64,23 @@ int execute(const VerifyArguments& args) {
     return 0;
   }
   if (args.stability) {
-    const auto results = run_stability(options);
+    std::vector<StabilityResult> results;
+    if (args.scenes.empty()) {
+      results = run_stability(options);
+    } else {
+      for (const std::string& name : args.scenes) {
+        try {
+          results.push_back(run_stability_scene(name));
+        } catch (const std::invalid_argument&) {
+          std::fprintf(
+              stderr, "fragmpm verify --scene: unknown stability scene '%s'; known:", name.c_str());
+          for (const std::string& known : stability_scene_names())
+            std::fprintf(stderr, " %s", known.c_str());
+          std::fprintf(stderr, "\n");
+          return 2;
+        }
+      }
+    }
     bool all = true;
     for (const auto& r : results) {
       std::printf("\n%-24s %s  (%.2f s)\n", r.scene.c_str(), r.passed ? "PASS" : "FAIL",
@@ -121,6 +139,9 @@ void add_verify_command(CLI::App& app, CommandResult& result) {
   verify->add_option("-o,--output", args->output, "Directory for CSV files (default verify-out)");
   verify->add_flag("--quick", args->quick, "Fewer, coarser levels (for CI)");
   verify->add_flag("--stability", args->stability, "Run the stiff and extreme stability scenes");
+  verify->add_option("--scene", args->scenes,
+                     "With --stability: only these stability scenes (repeatable; e.g. "
+                     "spinning-disk)");
   verify->add_flag("--list", args->list, "List the cases");
   verify->add_option("--threads", args->threads, "OpenMP threads");
   verify->callback([args, &result] { result.exit_code = execute(*args); });

@@ -89,13 +89,23 @@ int read_grid(const Section& g, mpm::GridSpec<2>& grid) {
 }
 
 void read_time(const Section& t, mpm::TimeSpec& time) {
-  t.allow_only({"cfl", "dt", "pic_fraction", "thermal_pic_fraction"});
+  t.allow_only({"cfl", "dt", "transfer", "pic_fraction", "thermal_pic_fraction"});
   time.cfl = t.optional_number("cfl").value_or(0.4);
   if (!(time.cfl > 0.0 && time.cfl <= 1.0)) t.expected("cfl", "a Courant number 0 < cfl <= 1");
   if (auto dt = t.optional_quantity("dt", QK::time)) {
     if (!(*dt > 0.0)) t.expected("dt", "a positive time step");
     time.fixed_dt = *dt;
   }
+  const std::string transfer = t.optional_string("transfer").value_or("flip");
+  if (transfer == "flip")
+    time.transfer = mpm::Transfer::flip;
+  else if (transfer == "apic")
+    time.transfer = mpm::Transfer::apic;
+  else
+    t.expected("transfer", "one of \"flip\" ([XLS21] eq. (64)), \"apic\" ([JSS15])");
+  if (time.transfer == mpm::Transfer::apic && t.has("pic_fraction"))
+    t.expected("pic_fraction",
+               "no pic_fraction with transfer = \"apic\" (the FLIP/PIC blend is FLIP's)");
   time.pic_fraction = t.optional_number("pic_fraction").value_or(0.0);
   if (!(time.pic_fraction >= 0.0 && time.pic_fraction <= 1.0))
     t.expected("pic_fraction", "a PIC fraction 0 <= pic_fraction <= 1 ([XLS21] eq. (64))");
@@ -288,6 +298,7 @@ void append_particles(mpm::Particles<2>& dst, const mpm::Particles<2>& src,
   auto cat = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
   cat(dst.x, src.x);
   cat(dst.v, src.v);
+  cat(dst.affine, src.affine);
   cat(dst.F, src.F);
   cat(dst.volume0, src.volume0);
   cat(dst.mass, src.mass);

@@ -233,6 +233,9 @@ SampleResult sample_bodies(const std::vector<BodySample>& bodies,
     const auto b = static_cast<std::size_t>(site_body[k]);
     const Vec2 r = P.x[k] - centroid[b];
     P.v[k] = bodies[b].velocity + bodies[b].angular_velocity * Vec2(-r.y(), r.x());
+    // The velocity gradient of that motion, the affine field an APIC run starts from (FLIP drops
+    // it).
+    P.affine[k] << 0.0, -bodies[b].angular_velocity, bodies[b].angular_velocity, 0.0;
   }
   return out;
 }

@@ -11,8 +11,11 @@ namespace fragmpm::mpm {
 
 template <int D>
 struct Particles {
-  std::vector<Vec<D>> x;        ///< position [m]
-  std::vector<Vec<D>> v;        ///< velocity [m/s]
+  std::vector<Vec<D>> x;  ///< position [m]
+  std::vector<Vec<D>> v;  ///< velocity [m/s]
+  /// C_p [1/s]: the affine part of the velocity field over the particle, v(x) = v_p + C_p (x − x_p)
+  /// ([JSS15]). Carried only by the APIC transfer; zero with FLIP.
+  std::vector<Mat<D>> affine;
   std::vector<Mat<D>> F;        ///< deformation gradient
   std::vector<double> volume0;  ///< initial volume [m^D per unit thickness^(3-D)]
   std::vector<double> mass;     ///< [kg per unit thickness^(3-D)]
@@ -33,6 +36,7 @@ struct Particles {
   void resize(std::size_t n, bool thermal = false) {
     x.resize(n, Vec<D>::Zero());
     v.resize(n, Vec<D>::Zero());
+    affine.resize(n, Mat<D>::Zero());
     F.resize(n, Mat<D>::Identity());
     volume0.resize(n, 0.0);
     mass.resize(n, 0.0);

@@ -125,10 +125,17 @@ struct GridSpec {
   ShapeFunctionKind shape_function = ShapeFunctionKind::cpdi;
 };
 
+/// How velocities go between particles and grid. FLIP ([XLS21] eq. (64)) lumps each particle's
+/// momentum at its velocity, which misplaces the momentum of a rotation at partly filled nodes;
+/// APIC ([JSS15]) carries the particle's affine velocity field C_p as well, so rigid and affine
+/// motions pass the grid unchanged.
+enum class Transfer { flip, apic };
+
 struct TimeSpec {
-  double cfl = 0.4;           ///< C_cfl in Δt = C h / max(c + |v|)
-  double fixed_dt = 0.0;      ///< [s]; 0 = adaptive
-  double pic_fraction = 0.0;  ///< ζ of [XLS21] eq. (64): 0 = pure FLIP, 1 = pure PIC
+  double cfl = 0.4;       ///< C_cfl in Δt = C h / max(c + |v|)
+  double fixed_dt = 0.0;  ///< [s]; 0 = adaptive
+  Transfer transfer = Transfer::flip;
+  double pic_fraction = 0.0;  ///< FLIP only: ζ of [XLS21] eq. (64), 0 = pure FLIP, 1 = pure PIC
   /// ζ_θ for the particle temperatures: θ_p ← (1 − ζ_θ)(θ_p + Δt Σ S̄ θ̇_i) + ζ_θ Σ S̄ (θ_i + Δt θ̇_i).
   /// 0 is [XLS21] eq. (62), whose increment lets a particle hotter than the nodal interpolant warm
   /// further (7.8 K past the hottest initial temperature at a conductivity contrast of 10⁴); the

@@ -24,13 +24,17 @@ struct SeriesRow {
   double time = 0.0, dt = 0.0;
   double kinetic = 0.0, strain = 0.0, thermal = 0.0;
   EnergyAccumulators totals;
-  /// (kinetic + strain + dissipated + friction_work) − (initial + wall_work + gravity_work): zero
-  /// for an exact conservative scheme. Grid contact is perfectly inelastic at a node, and with FLIP
-  /// the particles keep their own velocities, so the kinetic energy an impact removes cannot be
-  /// isolated from the rest of the step: inelastic contact losses appear here, together with the
-  /// scheme's numerical dissipation.
+  /// (kinetic + strain + dissipated + friction_work) − (initial + wall_work + gravity_work +
+  /// load_work): zero for an exact conservative scheme. Grid contact is perfectly inelastic at a
+  /// node, and the kinetic energy an impact removes from the particles cannot be isolated from the
+  /// rest of the step (with FLIP or APIC): inelastic contact losses appear here, together with the
+  /// scheme's numerical dissipation. With APIC the kinetic energy includes the affine part
+  /// ½ m tr(C Q Cᵀ).
   double balance_error = 0.0;
   Vec<D> momentum = Vec<D>::Zero();
+  /// About the origin, Σ m_p (x_p × v_p + ε:(C_p Q_p)) with Q_p the second moment of the particle's
+  /// domain: the spin of the affine field C_p counts with APIC [kg m²/s, per unit thickness in 2D].
+  Axial<D> angular_momentum = Axial<D>::Zero();
   std::vector<Vec<D>>
       wall_force;  ///< reaction exerted by the material on each wall [N per unit thickness]
   std::vector<Vec<D>> wall_displacement;  ///< [m]

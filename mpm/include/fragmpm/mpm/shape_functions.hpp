@@ -20,6 +20,8 @@ struct Stencil {
   std::array<std::int64_t, capacity> node;
   std::array<double, capacity> weight;
   std::array<Vec<D>, capacity> gradient;
+  /// x_i − x_p, filled only by the stencils built with Offsets (the APIC transfer needs them).
+  std::array<Vec<D>, capacity> offset;
 };
 
 namespace detail {
@@ -80,7 +82,7 @@ inline void gimp_1d(double xi, double h, double lp, double& w, double& dw) {
 }  // namespace detail
 
 /// Standard linear (bilinear in 2D) shape functions at the particle position.
-template <int D>
+template <int D, bool Offsets = false>
 inline void linear_stencil(const Vec<D>& x, const GridIndex<D>& grid, Stencil<D>& stencil) {
   stencil.count = 0;
   detail::linear_hat<D>(x, grid, [&](const IVec<D>& node, double value, const Vec<D>& gradient) {
@@ -88,12 +90,13 @@ inline void linear_stencil(const Vec<D>& x, const GridIndex<D>& grid, Stencil<D>
     stencil.node[e] = grid.linear(node);
     stencil.weight[e] = value;
     stencil.gradient[e] = gradient;
+    if constexpr (Offsets) stencil.offset[e] = grid.position(node) - x;
   });
 }
 
 /// Undeformed GIMP: the particle is a box of half-length `half_length` per direction that does not
 /// deform; S̄ is the tensor product of the 1D convolution of the hat with the box.
-template <int D>
+template <int D, bool Offsets = false>
 inline void ugimp_stencil(const Vec<D>& x, const Vec<D>& half_length, const GridIndex<D>& grid,
                           Stencil<D>& stencil) {
   stencil.count = 0;
@@ -130,6 +133,7 @@ inline void ugimp_stencil(const Vec<D>& x, const Vec<D>& half_length, const Grid
     stencil.node[e] = grid.linear(node);
     stencil.weight[e] = value;
     stencil.gradient[e] = gradient;
+    if constexpr (Offsets) stencil.offset[e] = grid.position(node) - x;
   }
 }
 
@@ -140,7 +144,7 @@ inline void ugimp_stencil(const Vec<D>& x, const Vec<D>& half_length, const Grid
 /// domain/2 and s_c ∈ {±1}^D the corner's signs; |det J|/V = 2^{-D}, so the corner vector is J^{-T}
 /// s_c / 2^D = domain^{-T} s_c · 2^{1-D}. In 2D this is exactly eq. (53) (its 1/(2V) times the
 /// cofactor of the full edge vectors).
-template <int D>
+template <int D, bool Offsets = false>
 inline void cpdi_stencil(const Vec<D>& x, const Mat<D>& domain, const GridIndex<D>& grid,
                          Stencil<D>& stencil) {
   stencil.count = 0;
@@ -158,6 +162,7 @@ inline void cpdi_stencil(const Vec<D>& x, const Mat<D>& domain, const GridIndex<
                             stencil.node[e] = grid.linear(node);
                             stencil.weight[e] = corner_share * value;
                             stencil.gradient[e] = value * corner_vector;
+                            if constexpr (Offsets) stencil.offset[e] = grid.position(node) - x;
                           });
   }
 }

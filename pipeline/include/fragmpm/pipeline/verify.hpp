@@ -106,5 +106,7 @@ std::vector<StabilityResult> run_stability(const VerifyOptions& options);
 /// One stability scene (scenes/stability/NAME.toml) with its checks; std::invalid_argument for an
 /// unknown name.
 StabilityResult run_stability_scene(const std::string& name);
+/// The stability scenes' names, in run order.
+std::vector<std::string> stability_scene_names();
 
 }  // namespace fragmpm::pipeline
