@@ -269,7 +269,7 @@ double centrifugal_stress(const mpm::MaterialSpec& m, double omega, double radiu
 /// start makes the disk ring about that equilibrium, so the stress reaches about twice σ_c (each
 /// radial mode overshoots its static share by two; their sum can pass 2 σ_c a little). Rigid
 /// rotation itself produces none: F is updated by an orthogonal increment for a spin ([HW80]).
-/// The check allows twice that ringing bound, 4 σ_c; a transfer error (FLIP: 8.85 MPa = 86 σ_c)
+/// The check allows twice that ringing bound, 4 σ_c; a transfer error (FLIP: 14.0 MPa = 136 σ_c)
 /// grows as Δt shrinks, so the scene is run again at half the Courant number and the two maxima
 /// must agree within 10 %. Free body: momentum is kept to round-off; angular momentum (with the
 /// particles' affine spin) and kinetic + strain energy within the limits printed.
