@@ -49,6 +49,16 @@ max_steps = 1000
   return pipeline::parse_scene(text, "spinning-disk.toml");
 }
 
+/// h = 0.1, nodes −5 … 14 per direction.
+mpm::GridIndex<2> test_grid() {
+  mpm::GridIndex<2> grid;
+  grid.cell_size = 0.1;
+  grid.inverse_cell_size = 10.0;
+  grid.lower = mpm::IVec<2>(-5, -5);
+  grid.extent = mpm::IVec<2>(20, 20);
+  return grid;
+}
+
 double largest_stress(const mpm::Particles<2>& P) {
   double largest = 0.0;
   for (const auto& s : P.stress) largest = std::max(largest, s.cwiseAbs().maxCoeff());
@@ -76,11 +86,7 @@ TEST(Apic, RigidSpinCreatesNoStressInTheFirstStep) {
 TEST(Apic, LinearHatStencilGivesGradientFromOffsets) {
   // For the linear hat, D_p = Σ S̄ (x_i − x_p)(x_i − x_p)ᵀ is diag(f(1 − f)) h² and
   // S̄ D_p⁻¹ (x_i − x_p) = ∇S̄ for every node: C_p = L_p is the APIC matrix B_p D_p⁻¹.
-  mpm::GridIndex<2> grid;
-  grid.cell_size = 0.1;
-  grid.inverse_cell_size = 10.0;
-  grid.lower = mpm::IVec<2>(-5, -5);
-  grid.extent = mpm::IVec<2>(20, 20);
+  const mpm::GridIndex<2> grid = test_grid();
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0.05, 0.95);
   for (int trial = 0; trial < 50; ++trial) {
@@ -101,11 +107,7 @@ TEST(Apic, LinearHatStencilGivesGradientFromOffsets) {
 }
 
 TEST(Apic, StencilOffsetsAreNodeMinusParticleForEveryKernel) {
-  mpm::GridIndex<2> grid;
-  grid.cell_size = 0.1;
-  grid.inverse_cell_size = 10.0;
-  grid.lower = mpm::IVec<2>(-5, -5);
-  grid.extent = mpm::IVec<2>(20, 20);
+  const mpm::GridIndex<2> grid = test_grid();
   const Vec<2> x(0.437, 0.262);
   Mat<2> domain;
   domain << 0.05, 0.01, -0.02, 0.04;
