@@ -64,6 +64,9 @@ const std::vector<ScalarColumn<D>>& scalar_columns() {
        [](const R& r) { return r.totals.dissipated; }},
       {"friction_work", "dissipated by friction (cumulative)", true, "",
        [](const R& r) { return r.totals.friction_work; }},
+      {"contact_dissipation",
+       "plastic collision loss of grid contact and walls, beyond friction (cumulative)", true, "",
+       [](const R& r) { return r.totals.contact_dissipation; }},
       {"wall_work", "work of the walls on the material (cumulative)", true, "",
        [](const R& r) { return r.totals.wall_work; }},
       {"gravity_work", "work of gravity (cumulative)", true, "",
@@ -382,6 +385,7 @@ const std::vector<std::pair<const char*, double EnergyAccumulators::*>>& accumul
       {"load_work", &EnergyAccumulators::load_work},
       {"friction_work", &EnergyAccumulators::friction_work},
       {"dissipated", &EnergyAccumulators::dissipated},
+      {"contact_dissipation", &EnergyAccumulators::contact_dissipation},
       {"initial_energy", &EnergyAccumulators::initial_energy},
   };
   return fields;

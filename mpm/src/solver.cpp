@@ -138,6 +138,7 @@ struct Solver<D>::Impl {
         std::holds_alternative<AdhesiveFriction>(problem.contact.friction) ||
         problem.thermal.active();
     s.plan.gap_test = problem.contact.position_gap_test;
+    s.plan.books_contact = s.plan.partitioned || !problem.walls.empty();
     s.plan.principal_rule = problem.contact.nodal_gradient == NodalGradientRule::principal;
     s.kernel_radius = problem.grid.cell_size * std::sqrt(double(D));
     s.grid.origin = problem.grid.min;
@@ -207,8 +208,10 @@ struct Solver<D>::Impl {
     scatter_to_grid<D, Kind, Partitioned, Affine>(s);
     if constexpr (Thermal) thermal_begin<D, Kind, Partitioned>(s);  // nodal θⁿ for friction
     update_grid_velocities(s, dt);
+    const double friction_before = s.totals.friction_work, wall_work_before = s.totals.wall_work;
     if constexpr (Partitioned) exchange_contact_momentum(s, dt);
     if (!s.problem.walls.empty()) apply_walls(s, dt);
+    if (s.plan.books_contact) book_contact_energy(s, dt, friction_before, wall_work_before);
     if constexpr (Thermal) thermal_finish<D, Kind, Partitioned>(s, dt);  // [XLS21] Alg. 1
     return grid_to_particles<D, Kind, Partitioned, Thermal, Affine>(s, dt);
   }
@@ -269,7 +272,8 @@ struct Solver<D>::Impl {
     row.dt = dt;
     row.totals = s.totals;
     row.balance_error =
-        (row.kinetic + row.strain + s.totals.dissipated + s.totals.friction_work) -
+        (row.kinetic + row.strain + s.totals.dissipated + s.totals.friction_work +
+         s.totals.contact_dissipation) -
         (s.totals.initial_energy + s.totals.wall_work + s.totals.gravity_work + s.totals.load_work);
     for (std::size_t w = 0; w < s.problem.walls.size(); ++w)
       row.wall_displacement[w] = s.problem.walls[w].velocity.displacement(s.time);

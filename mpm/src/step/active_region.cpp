@@ -84,6 +84,7 @@ void size_grid(StepState<D>& state) {
     size_array(N.velocity_lumped[f], nodes);
     size_array(N.velocity[f], nodes);
   }
+  if (state.plan.books_contact) reset_array(N.touched, nodes, std::uint8_t{0});
   if (!state.partition.this_step) return;
   PartitionState<D>& part = state.partition;
   ContactSums<D>& sums = state.contact;

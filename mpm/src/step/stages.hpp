@@ -45,6 +45,12 @@ void exchange_contact_momentum(StepState<D>& state, double dt);
 template <int D>
 void apply_walls(StepState<D>& state, double dt);
 
+/// What contact and walls took from the mechanical energy this step, booked as
+/// contact_dissipation. (contact_energy.cpp)
+template <int D>
+void book_contact_energy(StepState<D>& state, double dt, double friction_before,
+                         double wall_work_before);
+
 /// Nodal capacities and temperatures θⁿ, before the grid update. (thermal_stage.cpp)
 template <int D, ShapeFunctionKind Kind, bool Partitioned>
 void thermal_begin(StepState<D>& state);

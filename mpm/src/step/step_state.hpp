@@ -26,6 +26,7 @@ struct StepPlan {
   bool needs_contact_area = false;  ///< adhesion or contact conductance scale with the contact area
   bool gap_test = false;            ///< position test of contact ([NBS18] eq. (8))
   bool principal_rule = false;      ///< nodal gradient = principal direction of the gradient tensor
+  bool books_contact = false;       ///< two-field nodes or walls exist: book the contact energy
 };
 
 /// Per node and field (field 1 exists only when the step is partitioned).
@@ -35,6 +36,9 @@ struct NodeFields {
   std::array<std::vector<Vec<D>>, 2> momentum, force;
   std::array<std::vector<Vec<D>>, 2> velocity_lumped;  ///< p_i / m_i before the grid update
   std::array<std::vector<Vec<D>>, 2> velocity;         ///< after the grid update, contact and walls
+  /// 1 where contact or a wall changed a field's velocity this step (kept while the plan books
+  /// contact energy).
+  std::vector<std::uint8_t> touched;
 };
 
 /// Race-free, thread-count-independent scatter: particles binned into strips along direction 0

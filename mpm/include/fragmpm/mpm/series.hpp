@@ -9,11 +9,14 @@ namespace fragmpm::mpm {
 
 /// Running totals that a restart must restore exactly.
 struct EnergyAccumulators {
-  double wall_work = 0.0;       ///< work done by walls on the material [J per unit thickness in 2D]
-  double gravity_work = 0.0;    ///< work done by gravity [J]
-  double load_work = 0.0;       ///< work done by traction loads [J]
-  double friction_work = 0.0;   ///< dissipated by friction at walls and contacts [J]
-  double dissipated = 0.0;      ///< dissipated by damage [J]
+  double wall_work = 0.0;      ///< work done by walls on the material [J per unit thickness in 2D]
+  double gravity_work = 0.0;   ///< work done by gravity [J]
+  double load_work = 0.0;      ///< work done by traction loads [J]
+  double friction_work = 0.0;  ///< dissipated by friction at walls and contacts [J]
+  double dissipated = 0.0;     ///< dissipated by damage [J]
+  /// What grid contact and walls take out as perfectly plastic collisions, beyond the friction
+  /// work (step/contact_energy.cpp) [J].
+  double contact_dissipation = 0.0;
   double initial_energy = 0.0;  ///< kinetic + strain at step 0 [J]
 };
 
@@ -24,12 +27,10 @@ struct SeriesRow {
   double time = 0.0, dt = 0.0;
   double kinetic = 0.0, strain = 0.0, thermal = 0.0;
   EnergyAccumulators totals;
-  /// (kinetic + strain + dissipated + friction_work) − (initial + wall_work + gravity_work +
-  /// load_work): zero for an exact conservative scheme. Grid contact is perfectly inelastic at a
-  /// node, and the kinetic energy an impact removes from the particles cannot be isolated from the
-  /// rest of the step (with FLIP or APIC): inelastic contact losses appear here, together with the
-  /// scheme's numerical dissipation. With APIC the kinetic energy includes the affine part
-  /// ½ m tr(C Q Cᵀ).
+  /// (kinetic + strain + dissipated + friction_work + contact_dissipation) − (initial + wall_work +
+  /// gravity_work + load_work): zero for an exact conservative scheme. What remains is the
+  /// explicit step's own energy error (large at nodes an impact accelerates) and the transfer's
+  /// numerical dissipation. With APIC the kinetic energy includes the affine part ½ m tr(C Q Cᵀ).
   double balance_error = 0.0;
   Vec<D> momentum = Vec<D>::Zero();
   /// About the origin, Σ m_p (x_p × v_p + ε:(C_p Q_p)) with Q_p the second moment of the particle's

@@ -1,0 +1,120 @@
+// Contact energy booking (contact_energy.cpp): the plastic loss of grid contact at walls and
+// between fields, against what is known of it without the booking formula: it vanishes for a body
+// that touches nothing, it is positive and shrinks at first order with the cell size for an elastic
+// bounce (the continuum bounce is lossless), and it equals the lost kinetic energy of a
+// perfectly plastic grid collision of two bodies that meet at one node row.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "fragmpm/mpm/solver.hpp"
+#include "fragmpm/pipeline/scene.hpp"
+
+using namespace fragmpm;
+
+namespace {
+
+std::string disk_bounce(const std::string& cell_size) {
+  std::ifstream in(std::string(FRAGMPM_SOURCE_DIR) + "/scenes/disk-bounce.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  scene.replace(scene.find("cell_size = \"1 mm\""), 18, "cell_size = \"" + cell_size + "\"");
+  scene.replace(scene.find("end_time = \"20 ms\""), 18, "end_time = \"5 ms\"");  // one bounce
+  return scene;
+}
+
+struct Bounce {
+  double contact_loss = 0.0;  ///< contact_dissipation after the first bounce [J/m]
+  double unbooked = 0.0;      ///< −balance_error [J/m]
+  double input = 0.0;         ///< initial energy [J/m]
+};
+
+Bounce first_bounce(const std::string& cell_size) {
+  mpm::Solver<2> solver(pipeline::parse_scene(disk_bounce(cell_size), "disk-bounce.toml"));
+  while (solver.time() < 5e-3 * (1.0 - 1e-12)) EXPECT_FALSE(solver.step(5e-3 - solver.time()));
+  const auto& row = solver.last_row();
+  return {row.totals.contact_dissipation, -row.balance_error, row.totals.initial_energy};
+}
+
+}  // namespace
+
+// The elastic disk falls 13 mm at 5 m/s onto the floor and rebounds; the continuum bounce loses
+// nothing, the grid's stop of the arriving nodes loses O(h). Measured: 0.0224 J/m at 1 mm,
+// 0.0092 at 0.5 mm (order 1.28), 0.0034 at 0.25 mm (order 1.42); the unbooked rest, the explicit
+// step's error at the strongly accelerated nodes next to the floor and the transfer's smearing of
+// the nodal jump, is 6.1 %, 3.1 % and 1.5 % of the input.
+TEST(ContactEnergy, BounceLossFallsAtFirstOrderWithTheCellSize) {
+  const Bounce coarse = first_bounce("1 mm");
+  const Bounce fine = first_bounce("0.5 mm");
+  EXPECT_GT(coarse.contact_loss, 0.0);
+  EXPECT_LT(coarse.contact_loss, 0.05 * coarse.input);
+  const double order = std::log2(coarse.contact_loss / fine.contact_loss);
+  EXPECT_GT(order, 0.9);
+  EXPECT_GT(std::log2(coarse.unbooked / fine.unbooked), 0.9);
+}
+
+// A free block touches no wall and no other field: nothing is booked.
+TEST(ContactEnergy, NothingIsBookedWithoutContact) {
+  std::string scene = disk_bounce("1 mm");
+  scene.replace(scene.find("end_time = \"5 ms\""), 17, "end_time = \"1 ms\"");  // before the floor
+  mpm::Solver<2> solver(pipeline::parse_scene(scene, "disk-bounce.toml"));
+  while (solver.time() < 1e-3 * (1.0 - 1e-12)) EXPECT_FALSE(solver.step(1e-3 - solver.time()));
+  EXPECT_EQ(solver.last_row().totals.contact_dissipation, 0.0);
+}
+
+// Two equal rigid-like blocks (one field each) moving at ±v meet head-on between two node rows.
+// At the first contact step the nodes they share stop; the booked loss is then the kinetic energy
+// of the grid masses that stopped, ½ Σ m_i v² (the stress is zero, so the step adds no force).
+TEST(ContactEnergy, HeadOnCollisionBooksTheStoppedKineticEnergy) {
+  const std::string text = R"(
+[grid]
+cell_size = "1 mm"
+min = ["-10 mm", "-5 mm"]
+max = ["10 mm", "5 mm"]
+shape_function = "linear"
+[time]
+cfl = 0.1
+[[materials]]
+name = "steel"
+model = "neo-hookean"
+E = "200 GPa"
+nu = 0.0
+density = "7.8 g/cm3"
+[[bodies]]
+name = "left"
+material = "steel"
+shape = "box"
+min = ["-6 mm", "-2 mm"]
+max = ["-0.3 mm", "2 mm"]
+velocity = ["1 m/s", "0 m/s"]
+[[bodies]]
+name = "right"
+material = "steel"
+shape = "box"
+min = ["0.3 mm", "-2 mm"]
+max = ["6 mm", "2 mm"]
+velocity = ["-1 m/s", "0 m/s"]
+[contact]
+partitioning = "bodies"
+friction = 0.0
+[stop]
+max_steps = 1
+)";
+  mpm::Problem<2> problem = pipeline::parse_scene(text, "collision.toml");
+  // Grid mass the two bodies share: the node column x = 0 (linear hats, particles 0.3 mm from it
+  // hold weight 0.7 there, two particles per cell).
+  double shared = 0.0;
+  for (std::size_t p = 0; p < problem.particles.size(); ++p) {
+    const double distance = std::abs(problem.particles.x[p][0]);
+    if (distance < 1e-3) shared += problem.particles.mass[p] * (1.0 - distance / 1e-3);
+  }
+  mpm::Solver<2> solver(std::move(problem));
+  ASSERT_FALSE(solver.step());
+  const double expected = 0.5 * shared * 1.0 * 1.0;
+  EXPECT_GT(shared, 0.0);
+  EXPECT_NEAR(solver.last_row().totals.contact_dissipation, expected, 1e-6 * expected);
+}
