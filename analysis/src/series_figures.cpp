@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string_view>
 
 #include "fragmpm/analysis/figure_error.hpp"
 #include "fragmpm/analysis/si_format.hpp"
@@ -96,9 +97,12 @@ PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
                                                          {"strain", "strain"},
                                                          {"dissipated", "dissipated (damage)"},
                                                          {"friction_work", "friction work"},
+                                                         {"contact_dissipation", "contact loss"},
                                                          {"wall_work", "wall work"},
                                                          {"balance_error", "balance error"}};
   for (const auto& [name, label] : columns) {
+    // Run files written before the contact loss was booked have no such series.
+    if (std::string_view(name) == "contact_dissipation" && !run.has(name)) continue;
     LineSeries s;
     s.label = label;
     s.x = time;
