@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/read_text.hpp"
 #include "fragmpm/analysis/axis_ticks.hpp"
 #include "fragmpm/analysis/colour_map.hpp"
 #include "fragmpm/analysis/figure_error.hpp"
@@ -28,6 +29,8 @@
 namespace fs = std::filesystem;
 using namespace fragmpm;
 using namespace fragmpm::analysis;
+
+using fragmpm::test_support::read_text;
 
 namespace {
 
@@ -54,11 +57,6 @@ int run_fragmpm(const std::string& arguments, const fs::path& log) {
       std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 cv::Vec3b pixel(const cv::Mat& image, double x, double y) {

@@ -6,22 +6,20 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "../support/read_text.hpp"
 #include "fragmpm/mpm/solver.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 
 using namespace fragmpm;
 
+using fragmpm::test_support::read_text;
+
 namespace {
 
 std::string disk_bounce(const std::string& cell_size) {
-  std::ifstream in(std::string(FRAGMPM_SOURCE_DIR) + "/scenes/disk-bounce.toml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string scene = text.str();
+  std::string scene = read_text(std::string(FRAGMPM_SOURCE_DIR) + "/scenes/disk-bounce.toml");
   scene.replace(scene.find("cell_size = \"1 mm\""), 18, "cell_size = \"" + cell_size + "\"");
   scene.replace(scene.find("end_time = \"20 ms\""), 18, "end_time = \"5 ms\"");  // one bounce
   return scene;

@@ -8,10 +8,13 @@
 #include <random>
 #include <sstream>
 
+#include "../support/read_text.hpp"
 #include "../support/temp_run_path.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
 namespace fragmpm::mpm {
+using fragmpm::test_support::read_text;
+
 namespace {
 
 std::string temp_path(const std::string& name) {
@@ -64,13 +67,6 @@ bool same_bits_eigen(const std::vector<M>& a, const std::vector<M>& b) {
   for (std::size_t i = 0; i < a.size(); ++i)
     if (std::memcmp(a[i].data(), b[i].data(), sizeof(double) * a[i].size()) != 0) return false;
   return true;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// Minimal XML well-formedness: every start tag is closed by a matching end tag, in order.

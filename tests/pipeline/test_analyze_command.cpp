@@ -11,11 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "../support/read_text.hpp"
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
 namespace fs = std::filesystem;
 namespace fm = fragmpm::mpm;
+
+using fragmpm::test_support::read_text;
 
 namespace {
 
@@ -26,11 +29,6 @@ int run_fragmpm(const std::string& arguments, const fs::path& log) {
       std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 std::vector<std::string> lines(const fs::path& path) {

@@ -12,12 +12,15 @@
 #include <fstream>
 #include <string>
 
+#include "../support/read_text.hpp"
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/pipeline_job.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 
 namespace fs = std::filesystem;
 namespace fp = fragmpm::pipeline;
+
+using fragmpm::test_support::read_text;
 
 namespace {
 
@@ -26,11 +29,6 @@ int run_fragmpm(const std::string& arguments, const fs::path& log) {
       std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 fs::path fresh_directory(const std::string& name) {

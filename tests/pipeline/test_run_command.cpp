@@ -9,10 +9,13 @@
 #include <fstream>
 #include <string>
 
+#include "../support/read_text.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace fragmpm;
+
+using fragmpm::test_support::read_text;
 
 namespace {
 
@@ -20,11 +23,6 @@ int run_fragmpm(const std::string& arguments, const std::string& log) {
   const std::string command = std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log + " 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 fs::path fresh_directory(const std::string& name) {
