@@ -15,13 +15,6 @@ namespace {
 
 using QK = QuantityKind;
 
-std::optional<bool> optional_bool(const Section& s, std::string_view k) {
-  const toml::node* n = s.find(k);
-  if (!n) return std::nullopt;
-  if (!n->is_boolean()) s.expected(k, "true or false");
-  return n->as_boolean()->get();
-}
-
 /// E = 9 K G / (3 K + G) [Pa], for the brittleness H̄ = σ_f² / (2 E G_f) ([XLS21] eq. (21)).
 double youngs_modulus(const mpm::MaterialSpec& m) {
   return 9.0 * m.bulk_modulus * m.shear_modulus / (3.0 * m.bulk_modulus + m.shear_modulus);
@@ -351,7 +344,7 @@ mpm::ContactSpec<2> read_contact(const Section& c) {
                  "a fraction of the kernel radius 0 <= rebuild_fraction <= 1 (0 = every step)");
     spec.rebuild_fraction = *f;
   }
-  spec.position_gap_test = optional_bool(c, "gap_test").value_or(false);
+  spec.position_gap_test = c.optional_bool("gap_test").value_or(false);
   if (auto n = c.optional_vector("normal", std::nullopt)) {
     if (!(n->norm() > 0.0))
       c.expected("normal", "a non-zero normal vector (the contact normal of field 0)");

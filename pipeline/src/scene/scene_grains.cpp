@@ -16,13 +16,6 @@ namespace {
 
 using QK = QuantityKind;
 
-std::optional<bool> optional_bool(const Section& s, std::string_view k) {
-  const toml::node* n = s.find(k);
-  if (!n) return std::nullopt;
-  if (!n->is_boolean()) s.expected(k, "true or false");
-  return n->as_boolean()->get();
-}
-
 /// [a, b, …] of integers in [lo, hi].
 std::vector<long long> integer_list(const Section& s, std::string_view k, long long lo,
                                     long long hi, const std::string& what) {
@@ -89,9 +82,9 @@ SegmentOptions read_segment_options(const Section& b, const std::string& image_p
         b.expected("threshold", "\"otsu\", \"triangle\", \"adaptive\" or a grey level (number)");
     }
   }
-  o.preprocess.invert = optional_bool(b, "invert").value_or(false);
-  o.split.enabled = optional_bool(b, "split").value_or(true);
-  o.drop_border = optional_bool(b, "drop_border").value_or(false);
+  o.preprocess.invert = b.optional_bool("invert").value_or(false);
+  o.split.enabled = b.optional_bool("split").value_or(true);
+  o.drop_border = b.optional_bool("drop_border").value_or(false);
   if (auto a = b.optional_integer("min_area")) {
     if (*a < 1) b.expected("min_area", "a grain area in pixels >= 1");
     o.min_area = *a;

@@ -241,6 +241,13 @@ std::string Section::string(std::string_view k) const {
   expected(k, "a string");
 }
 
+std::optional<bool> Section::optional_bool(std::string_view k) const {
+  const toml::node* n = find(k);
+  if (!n) return std::nullopt;
+  if (!n->is_boolean()) expected(k, "true or false");
+  return n->as_boolean()->get();
+}
+
 std::optional<std::string> Section::optional_string(std::string_view k) const {
   if (!has(k)) return std::nullopt;
   return string(k);

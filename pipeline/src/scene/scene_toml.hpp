@@ -61,6 +61,7 @@ class Section {
   std::optional<long long> optional_integer(std::string_view k) const;
   std::string string(std::string_view k) const;
   std::optional<std::string> optional_string(std::string_view k) const;
+  std::optional<bool> optional_bool(std::string_view k) const;
   /// A name: non-empty, letters, digits, '_', '-', '.' only (names end up in HDF5 dataset names).
   std::string name(std::string_view k) const;
   /// [a, b] of quantities of `kind`, or of plain numbers when kind is empty.
