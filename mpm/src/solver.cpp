@@ -22,67 +22,6 @@ constexpr double negligible_node_mass_fraction = 1e-10;
 }  // namespace
 
 template <int D>
-bool partitioning_active(const Problem<D>& problem) {
-  if (problem.contact.partitioning == Partitioning::off) return false;
-  if (problem.contact.partitioning == Partitioning::bodies) return true;
-  if (problem.body_names.size() > 1) return true;
-  for (const auto& m : problem.materials)
-    if (m.damages()) return true;
-  return false;
-}
-
-template <int D>
-std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
-  std::vector<ModuleDecision> plan;
-  const char* shape = problem.grid.shape_function == ShapeFunctionKind::cpdi    ? "CPDI"
-                      : problem.grid.shape_function == ShapeFunctionKind::ugimp ? "uGIMP"
-                                                                                : "linear";
-  plan.push_back({"mechanics", true,
-                  std::string("explicit update-stress-last MPM with ") + shape +
-                      " shape functions, neo-Hookean bodies"});
-  plan.push_back({"walls", !problem.walls.empty(),
-                  problem.walls.empty() ? "no walls in the scene"
-                                        : std::to_string(problem.walls.size()) + " rigid wall(s)"});
-  plan.push_back({"loads", !problem.loads.empty(),
-                  problem.loads.empty()
-                      ? "no traction loads"
-                      : std::to_string(problem.loads.size()) + " traction load(s)"});
-  plan.push_back({"gravity", problem.gravity.squaredNorm() > 0.0,
-                  problem.gravity.squaredNorm() > 0.0 ? "gravity set in [physics]" : "no gravity"});
-  std::vector<std::string> damaging;
-  for (const auto& m : problem.materials)
-    if (m.damages()) damaging.push_back(m.name);
-  std::string damage_reason = "no damage law in the scene";
-  if (!damaging.empty()) {
-    damage_reason = "damage law on material(s)";
-    for (const auto& name : damaging) damage_reason += " '" + name + "'";
-  }
-  plan.push_back({"damage", !damaging.empty(), damage_reason});
-  const std::size_t bodies = problem.body_names.size();
-  std::string partition_reason;
-  if (problem.contact.partitioning == Partitioning::bodies)
-    partition_reason =
-        "partitioning = \"bodies\" in [contact]: body 0 and the other bodies are "
-        "two always-separable fields (multimaterial contact, [NBS18] §2.2)";
-  else if (problem.contact.partitioning == Partitioning::off)
-    partition_reason = "partitioning = \"off\" in [contact]: one velocity field (single-field MPM)";
-  else if (partitioning_active(problem))
-    partition_reason =
-        "damage-field-gradient partitioning with two fields per node (" +
-        (bodies > 1 ? std::to_string(bodies) + " bodies, surface flags make them separable"
-                    : std::string("damage can open cracks")) +
-        "); kernel neighbour search radius = cell diagonal";
-  else
-    partition_reason = "one body and no damage: one velocity field, no neighbour search";
-  plan.push_back({"partitioning", partitioning_active(problem), partition_reason});
-  plan.push_back({"thermal", problem.thermal.active(),
-                  problem.thermal.active()
-                      ? problem.thermal.reason
-                      : "no thermal data and no heat sources: no thermal arrays"});
-  return plan;
-}
-
-template <int D>
 double stable_time_step(const Problem<D>& problem, const Particles<D>& particles, double cfl) {
   std::vector<NeoHookean> models;
   for (const auto& m : problem.materials) models.push_back({m.bulk_modulus, m.shear_modulus});
@@ -346,8 +285,6 @@ void Solver<D>::restore(double time, long long step, const EnergyAccumulators& t
   impl_->state.row.totals = totals;
 }
 
-template std::vector<ModuleDecision> plan_modules<2>(const Problem<2>&);
-template std::vector<ModuleDecision> plan_modules<3>(const Problem<3>&);
 template double stable_time_step<2>(const Problem<2>&, const Particles<2>&, double);
 template double stable_time_step<3>(const Problem<3>&, const Particles<3>&, double);
 template class Solver<2>;

@@ -30,6 +30,11 @@ struct ModuleDecision {
 template <int D>
 std::vector<ModuleDecision> plan_modules(const Problem<D>& problem);
 
+/// Whether the step runs two velocity fields per node: partitioning is not off and the scene has
+/// several bodies, a damage law, or asks for body partitioning.
+template <int D>
+bool partitioning_active(const Problem<D>& problem);
+
 /// Largest stable explicit Δt for the current particle state: C_cfl h / (√D max_p(c_p + |v_p|))
 /// with c_p = sqrt((K + 4G/3) / ρ_p), ρ_p = ρ0 / J. The √D is the multi-dimensional CFL factor of
 /// multilinear hats with a lumped mass (docs/design.md gives the 1D form).  [s]
