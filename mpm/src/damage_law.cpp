@@ -37,6 +37,11 @@ double rankine_softening_modulus(double strength, const RankineSoftening& law,
   return x / (1.0 - x);  // [XLS21] eq. (20): H_s = H̄ l_ch / (1 − H̄ l_ch)
 }
 
+double rankine_largest_strength(const RankineSoftening& law, double characteristic_length) {
+  // H̄ l_ch = σ_f² l_ch / (2 E G_f) < 1  ⇔  σ_f < √(2 E G_f / l_ch).
+  return std::sqrt(2.0 * law.youngs_modulus * law.fracture_energy / characteristic_length);
+}
+
 double rankine_largest_characteristic_length(double strength, const RankineSoftening& law) {
   // H̄ l_ch < 1  ⇔  l_ch < 1 / H̄ = 2 E G_f / σ_f².
   return 1.0 / brittleness(strength, law);
@@ -69,23 +74,30 @@ void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double stre
   if (std::holds_alternative<NoDamage>(law)) return;
   // An infinite (or NaN) strength never fails: such particles keep their history untouched too.
   if (!std::isfinite(strength)) return;
-  history = std::max(history, largest_principal_stress<D>(trial_stress));
+  const double largest = largest_principal_stress<D>(trial_stress);
+  history = std::max(history, largest);
 
   if (const auto* rankine = std::get_if<RankineSoftening>(&law)) {
-    const double R = std::max(strength, history);  // [XLS21] eq. (19)
-    if (!(R > strength)) return;
-    const double H_s = rankine_softening_modulus(strength, *rankine, characteristic_length);
-    // A cell too coarse for this particle's strength (snap-back; the scene refuses it for the
-    // nominal strength, but a strong Weibull draw may still exceed it): no softening branch exists,
-    // so the particle fails at once, which is the limit H_s → ∞ of eq. (20).
+    // A strength above √(2 E G_f / l_ch) has no softening branch (snap-back: H̄ l_ch ≥ 1). The
+    // scene refuses it for the nominal strength, but a strong Weibull draw may exceed it. Failing
+    // such a particle at its own strength would release σ_f² / (2E) per volume, more than the band's
+    // G_f / l_ch; capping its strength at the snap-back limit [BO83] makes it fail at once when σ̄₁
+    // reaches the cap (the limit H_s → ∞ of eq. (20)), releasing exactly G_f / l_ch.
+    const double usable =
+        std::min(strength, rankine_largest_strength(*rankine, characteristic_length));
+    const double R = std::max(usable, history);  // [XLS21] eq. (19)
+    if (!(R > usable)) return;
+    const double H_s = rankine_softening_modulus(usable, *rankine, characteristic_length);
     double d = 1.0;
     if (std::isfinite(H_s))
-      d = std::min(1.0, (1.0 + H_s) * (1.0 - strength / R));  // [XLS21] eq. (20)
+      d = std::min(1.0, (1.0 + H_s) * (1.0 - usable / R));  // [XLS21] eq. (20)
     damage = std::max(damage, d);
     return;
   }
   if (const auto* ttf = std::get_if<TimeToFailure>(&law)) {
-    if (!(history >= strength) || damage >= 1.0) return;
+    // Damage grows only in the steps whose trial stress exceeds σ_f ([HH17] §2.7): a particle that a
+    // passing stress peak touched once and that unloaded since keeps the damage it reached.
+    if (!(largest >= strength) || damage >= 1.0) return;
     // τ = l_ch / c_f is the time the crack needs to cross the particle ([HH17] §2.7; the paper's
     // "τ = c_f/ℓ" has the ratio inverted, see damage_law.hpp).
     const double tau = characteristic_length / ttf->crack_speed;

@@ -145,18 +145,39 @@ TEST(DamageLaw, OneSofteningElementDissipatesFractureEnergyTimesArea) {
   }
 }
 
-TEST(DamageLaw, SnapBackParticleFailsAtOnce) {
-  // A strength whose H̄ l_ch ≥ 1 at this cell (e.g. a strong Weibull draw) has no softening branch.
+TEST(DamageLaw, SnapBackParticleFailsAtTheCappedStrengthAndDissipatesFractureEnergy) {
+  // A strength whose H̄ l_ch ≥ 1 at this l_ch (e.g. a strong Weibull draw) has no softening branch.
+  // Its strength is capped at √(2 E G_f / l_ch) [BO83]: it fails at once when σ̄₁ reaches the cap,
+  // far below its own strength, and releases G_f per crack area, not σ_f² / (2E) per volume.
   const double l = 1e-3, strong = 4.0 * kStrength;
+  const double cap = std::sqrt(2.0 * kE * kGf / l);  // 26.5 MPa here
   ASSERT_TRUE(std::isnan(mpm::rankine_softening_modulus(strong, rankine(), l)));
+  EXPECT_DOUBLE_EQ(mpm::rankine_largest_strength(rankine(), l), cap);
   mpm::Mat<2> s = mpm::Mat<2>::Zero();
-  s(0, 0) = 0.99 * strong;
+  s(0, 0) = 0.99 * cap;
   double history = 0.0, damage = 0.0;
   mpm::update_damage<2>(rankine(), s, strong, l, 1e-8, history, damage);
   EXPECT_EQ(damage, 0.0);
-  s(0, 0) = 1.001 * strong;
+  s(0, 0) = 1.001 * cap;
   mpm::update_damage<2>(rankine(), s, strong, l, 1e-8, history, damage);
   EXPECT_EQ(damage, 1.0);
+
+  // Uniaxial stress to failure: the dissipated energy of the element l_ch × A is G_f A.
+  const mpm::NeoHookean m = glass();
+  const double area = 2.5e-6;
+  double h3 = 0.0, d3 = 0.0, dissipated = 0.0;
+  const int n = 20000;
+  for (int k = 1; k <= n && d3 < 1.0; ++k) {
+    const mpm::Mat<3> F = uniaxial_F(m, 2.0 * cap / kE * k / n);
+    const double d_old = d3;
+    mpm::update_damage<3>(rankine(), m.cauchy<3>(F), strong, l, 1e-8, h3, d3);
+    dissipated +=
+        (d3 - d_old) * mpm::degradable_energy<3>(m, F, mpm::Degradation::tensile_spectral);
+  }
+  ASSERT_EQ(d3, 1.0);
+  EXPECT_NEAR(dissipated * l * area, kGf * area, 0.01 * kGf * area);
+  // Failing at its own strength would have released 16 × (σ_f / cap)² ≈ 57 times more.
+  EXPECT_LT(dissipated, 0.1 * strong * strong / (2.0 * kE));
 }
 
 TEST(DamageLaw, DamageNeverHealsAndNoDamageIsInert) {
@@ -275,7 +296,6 @@ TEST(DamageLaw, TimeToFailureReachesOneAfterExactlyTauOverDtSteps) {
       EXPECT_NEAR(damage, 0.1 * k, 1e-12);
       EXPECT_LT(damage, 1.0) << "step " << k;
     }
-    s.setZero();  // once started, failure continues although the stress has dropped
   }
   EXPECT_EQ(damage, 1.0);
   mpm::update_damage<2>(law, s, kStrength, l, dt, history, damage);
@@ -290,6 +310,26 @@ TEST(DamageLaw, TimeToFailureReachesOneAfterExactlyTauOverDtSteps) {
     ++steps;
   }
   EXPECT_EQ(steps, 4);
+}
+
+// [HH17] §2.7: damage is incremented while the failure stress is exceeded. A particle that a
+// transient peak lifted above σ_f for three steps and that unloaded since keeps d = 3 Δt/τ; the
+// growth resumes when the stress exceeds σ_f again.
+TEST(DamageLaw, TimeToFailureGrowsOnlyWhileTheStrengthIsExceeded) {
+  const mpm::TimeToFailure law{1000.0};
+  const double l = 1e-3, dt = 1e-7;  // τ = 1 µs, Δt/τ = 0.1
+  mpm::Mat<2> s = mpm::Mat<2>::Zero();
+  double history = 0.0, damage = 0.0;
+  s(0, 0) = 1.5 * kStrength;
+  for (int k = 0; k < 3; ++k) mpm::update_damage<2>(law, s, kStrength, l, dt, history, damage);
+  EXPECT_NEAR(damage, 0.3, 1e-12);
+  s(0, 0) = 0.5 * kStrength;  // the peak has passed
+  for (int k = 0; k < 20; ++k) mpm::update_damage<2>(law, s, kStrength, l, dt, history, damage);
+  EXPECT_NEAR(damage, 0.3, 1e-12);
+  EXPECT_EQ(history, 1.5 * kStrength);  // the history still records the peak
+  s(0, 0) = kStrength;
+  mpm::update_damage<2>(law, s, kStrength, l, dt, history, damage);
+  EXPECT_NEAR(damage, 0.4, 1e-12);
 }
 
 TEST(DamageLaw, WeibullMedianSizeEffectAndSeed) {

@@ -59,6 +59,11 @@ double rankine_softening_modulus(double strength, const RankineSoftening& law,
 
 /// Largest characteristic length l_ch [m] with H̄ l_ch < 1 ([XLS21] eq. (21)): every l_ch strictly
 /// below 1/H̄ = 2 E G_f / σ_f² is admissible.
+/// The largest strength with a softening branch at this l_ch: √(2 E G_f / l_ch) [Pa] ([BO83]: the
+/// strength a crack band of width l_ch must not exceed to dissipate G_f). The damage update caps
+/// stronger particles' strength at it.
+double rankine_largest_strength(const RankineSoftening& law, double characteristic_length);
+
 double rankine_largest_characteristic_length(double strength, const RankineSoftening& law);
 
 /// One damage update from the trial (undamaged, "effective") Cauchy stress σ̄ [Pa] of a particle
