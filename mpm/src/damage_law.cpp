@@ -80,9 +80,9 @@ void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double stre
   if (const auto* rankine = std::get_if<RankineSoftening>(&law)) {
     // A strength above √(2 E G_f / l_ch) has no softening branch (snap-back: H̄ l_ch ≥ 1). The
     // scene refuses it for the nominal strength, but a strong Weibull draw may exceed it. Failing
-    // such a particle at its own strength would release σ_f² / (2E) per volume, more than the band's
-    // G_f / l_ch; capping its strength at the snap-back limit [BO83] makes it fail at once when σ̄₁
-    // reaches the cap (the limit H_s → ∞ of eq. (20)), releasing exactly G_f / l_ch.
+    // such a particle at its own strength would release σ_f² / (2E) per volume, more than the
+    // band's G_f / l_ch; capping its strength at the snap-back limit [BO83] makes it fail at once
+    // when σ̄₁ reaches the cap (the limit H_s → ∞ of eq. (20)), releasing exactly G_f / l_ch.
     const double usable =
         std::min(strength, rankine_largest_strength(*rankine, characteristic_length));
     const double R = std::max(usable, history);  // [XLS21] eq. (19)
@@ -95,8 +95,8 @@ void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double stre
     return;
   }
   if (const auto* ttf = std::get_if<TimeToFailure>(&law)) {
-    // Damage grows only in the steps whose trial stress exceeds σ_f ([HH17] §2.7): a particle that a
-    // passing stress peak touched once and that unloaded since keeps the damage it reached.
+    // Damage grows only in the steps whose trial stress exceeds σ_f ([HH17] §2.7): a particle that
+    // a passing stress peak touched once and that unloaded since keeps the damage it reached.
     if (!(largest >= strength) || damage >= 1.0) return;
     // τ = l_ch / c_f is the time the crack needs to cross the particle ([HH17] §2.7; the paper's
     // "τ = c_f/ℓ" has the ratio inverted, see damage_law.hpp).

@@ -15,7 +15,7 @@ namespace fragmpm::pipeline {
 
 namespace {
 
-constexpr double ligament = 4e-3;  // [m]: the bar's height, scenes/verify/bar-tension.toml
+constexpr double ligament = 4e-3;     // [m]: the bar's height, scenes/verify/bar-tension.toml
 constexpr double mid_length = 10e-3;  // [m]
 constexpr double weaker = 0.98;
 constexpr double fully_damaged = 0.99;
@@ -50,9 +50,9 @@ std::vector<VerifyRow> run_level(int level, double cell_size, double length_over
       set_length > 0.0 ? set_length : std::sqrt(problem.particles.volume0[0]);
   mpm::Solver<2> solver(std::move(problem));
   const double end_time = solver.problem().stop.end_time;
-  const TimedRun timing = run_until(solver, end_time,
-                                    "bar-tension " + variant + " " + cell_label(cell_size), 0.0,
-                                    [](const mpm::Solver<2>&) {});
+  const TimedRun timing =
+      run_until(solver, end_time, "bar-tension " + variant + " " + cell_label(cell_size), 0.0,
+                [](const mpm::Solver<2>&) {});
   std::vector<VerifyRow> rows;
   VerifyRow dissipation = level_row("bar-tension", variant, level, cell_size, solver, timing);
   dissipation.metric = "damage_dissipation_J/m (reference: G_f x ligament)";
