@@ -178,6 +178,13 @@ const std::vector<SeriesColumn>& series_columns() {
        "fragment_mass_kg_per_m", false, [](const P& p) { return p.summary.fragment_mass; }},
       {"fines_mass", "kg/m (per unit thickness)", "mass of the fines", "fines_mass_kg_per_m", false,
        [](const P& p) { return p.summary.fines_mass; }},
+      {"departed_particles", "1",
+       "particles that left the domain and were removed by this frame ([grid] outside = "
+       "\"remove\")",
+       "departed_particles", true, [](const P& p) { return double(p.summary.departed_particles); }},
+      {"departed_mass", "kg/m (per unit thickness)",
+       "mass of the particles that left the domain by this frame", "departed_mass_kg_per_m", false,
+       [](const P& p) { return p.summary.departed_mass; }},
   };
   return columns;
 }

@@ -17,8 +17,8 @@ namespace fragmpm::mpm {
 
 const std::vector<std::string>& all_frame_fields() {
   static const std::vector<std::string> fields{
-      "x",      "v",      "F",       "volume0", "mass",     "r1",         "r2",
-      "stress", "damage", "surface", "body",    "material", "temperature"};
+      "x",      "v",      "F",       "volume0", "mass",     "r1",          "r2",
+      "stress", "damage", "surface", "body",    "material", "temperature", "id"};
   return fields;
 }
 
@@ -49,6 +49,8 @@ struct ScalarColumn {
   bool energy;  ///< units J (per unit thickness in 2D); otherwise `units`
   const char* units;
   std::function<double(const SeriesRow<D>&)> value;
+  /// Added after run files existed without it: a restarted older file goes on without the column.
+  bool optional = false;
 };
 
 template <int D>
@@ -75,6 +77,16 @@ const std::vector<ScalarColumn<D>>& scalar_columns() {
        [](const R& r) { return r.totals.load_work; }},
       {"balance_error", "energy balance error, see series.hpp", true, "",
        [](const R& r) { return r.balance_error; }},
+      {"lost_mass", "mass of the particles removed after leaving the domain (cumulative)", false,
+       D == 2 ? "kg/m (per unit thickness)" : "kg", [](const R& r) { return r.totals.lost.mass; },
+       true},
+      {"lost_kinetic",
+       "kinetic energy of the particles removed after leaving the domain, at removal (cumulative)",
+       true, "", [](const R& r) { return r.totals.lost.kinetic; }, true},
+      {"lost_strain",
+       "stored strain energy of the particles removed after leaving the domain, at removal "
+       "(cumulative)",
+       true, "", [](const R& r) { return r.totals.lost.strain; }, true},
   };
   return columns;
 }
@@ -119,7 +131,8 @@ struct RunFile<D>::Impl {
     series.clear();
     for (const std::string& name : group.children()) series.emplace(name, group.open_dataset(name));
     std::vector<std::string> required{"step", "momentum"};
-    for (const ScalarColumn<D>& c : scalar_columns<D>()) required.push_back(c.name);
+    for (const ScalarColumn<D>& c : scalar_columns<D>())
+      if (!c.optional) required.push_back(c.name);
     for (const std::string& w : wall_names) {
       required.push_back(wall_force_name(w));
       required.push_back(wall_displacement_name(w));
@@ -267,6 +280,12 @@ RunFile<D> RunFile<D>::create(const std::string& path, const RunMeta& meta, bool
   angular.set_attribute("description",
                         D == 2 ? "total angular momentum (out-of-plane component), steps x 1"
                                : "total angular momentum, steps x 3");
+  const h5::Dataset lost = series.create_extendible<double>("lost_momentum", {std::size_t{D}});
+  lost.set_attribute("units",
+                     D == 2 ? "kg/s (momentum per unit thickness, kg m/s per m)" : "kg m/s");
+  lost.set_attribute("description",
+                     "momentum of the particles removed after leaving the domain, at removal "
+                     "(cumulative), steps x D");
   for (const std::string& w : meta.wall_names) {
     const h5::Dataset force =
         series.create_extendible<double>(wall_force_name(w), {std::size_t{D}});
@@ -349,6 +368,7 @@ void RunFile<D>::append_series(const std::vector<SeriesRow<D>>& rows) {
                          " displacements; the run has " + std::to_string(walls) + " walls");
   std::vector<double> column(rows.size());
   for (const ScalarColumn<D>& c : scalar_columns<D>()) {
+    if (c.optional && !impl_->series.count(c.name)) continue;
     for (std::size_t k = 0; k < rows.size(); ++k) column[k] = c.value(rows[k]);
     impl_->series_dataset(c.name).append_rows(column);
   }
@@ -358,6 +378,12 @@ void RunFile<D>::append_series(const std::vector<SeriesRow<D>>& rows) {
   std::vector<Vec<D>> vectors(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) vectors[k] = rows[k].momentum;
   impl_->series_dataset("momentum").append_rows(pack<D>(vectors));
+  if (impl_->series.count("lost_momentum")) {
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      for (int i = 0; i < D; ++i)
+        vectors[k][i] = rows[k].totals.lost.momentum[static_cast<std::size_t>(i)];
+    impl_->series_dataset("lost_momentum").append_rows(pack<D>(vectors));
+  }
   // Run files from before the angular momentum series resume without it.
   if (impl_->series.count("angular_momentum")) {
     constexpr int A = Axial<D>::RowsAtCompileTime;
@@ -390,6 +416,21 @@ const std::vector<std::pair<const char*, double EnergyAccumulators::*>>& accumul
   };
   return fields;
 }
+
+/// What the removed particles carried out of the domain, as /checkpoint attributes (with
+/// lost_particles, the count, and lost_momentum_x, _y, _z).
+const std::vector<std::pair<const char*, double LostParticles::*>>& lost_fields() {
+  static const std::vector<std::pair<const char*, double LostParticles::*>> fields{
+      {"lost_mass", &LostParticles::mass},
+      {"lost_kinetic", &LostParticles::kinetic},
+      {"lost_strain", &LostParticles::strain},
+  };
+  return fields;
+}
+
+std::string lost_momentum_name(int component) {
+  return std::string("lost_momentum_") + "xyz"[component];
+}
 }  // namespace
 
 template <int D>
@@ -413,6 +454,7 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
   g.write("body", p.body, {n});
   g.write("material", p.material, {n});
   g.write("strength", p.strength, {n});
+  g.write("id", particle_ids(p), {n});
   if (!p.temperature.empty())
     g.write("temperature", p.temperature, {n});
   else if (g.exists("temperature"))
@@ -421,6 +463,11 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
   g.set_attribute("step", static_cast<std::int64_t>(checkpoint.step));
   for (const auto& [name, member] : accumulator_fields())
     g.set_attribute(name, checkpoint.totals.*member);
+  const LostParticles& lost = checkpoint.totals.lost;
+  g.set_attribute("lost_particles", static_cast<std::int64_t>(lost.count));
+  for (const auto& [name, member] : lost_fields()) g.set_attribute(name, lost.*member);
+  for (int k = 0; k < D; ++k)
+    g.set_attribute(lost_momentum_name(k), lost.momentum[static_cast<std::size_t>(k)]);
   g.set_attribute("complete", std::int64_t{1});
   impl_->file.flush();
 }
@@ -437,6 +484,14 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
   c.step = g.attribute_int64("step");
   for (const auto& [name, member] : accumulator_fields())
     if (g.has_attribute(name)) c.totals.*member = g.attribute_double(name);
+  // Checkpoints from before particles could be removed have none of these: nothing was lost.
+  LostParticles& lost = c.totals.lost;
+  if (g.has_attribute("lost_particles")) lost.count = g.attribute_int64("lost_particles");
+  for (const auto& [name, member] : lost_fields())
+    if (g.has_attribute(name)) lost.*member = g.attribute_double(name);
+  for (int k = 0; k < D; ++k)
+    if (g.has_attribute(lost_momentum_name(k)))
+      lost.momentum[static_cast<std::size_t>(k)] = g.attribute_double(lost_momentum_name(k));
   const std::size_t n = g.open_dataset("x").rows(), d = D;
   Particles<D>& p = c.particles;
   p.resize(n, g.exists("temperature"));
@@ -456,6 +511,7 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
   p.material = read_shaped<std::int32_t>(g, "material", {n});
   p.strength = read_shaped<double>(g, "strength", {n});
   if (!p.temperature.empty()) p.temperature = read_shaped<double>(g, "temperature", {n});
+  if (g.exists("id")) p.id = read_shaped<std::int32_t>(g, "id", {n});
   return c;
 }
 
@@ -518,6 +574,7 @@ Particles<D> read_particle_datasets(const h5::Group& g) {
   if (g.exists("body")) p.body = read_shaped<std::int32_t>(g, "body", {n});
   if (g.exists("material")) p.material = read_shaped<std::int32_t>(g, "material", {n});
   if (g.exists("temperature")) p.temperature = read_shaped<double>(g, "temperature", {n});
+  if (g.exists("id")) p.id = read_shaped<std::int32_t>(g, "id", {n});
   return p;
 }
 
@@ -527,7 +584,9 @@ std::vector<std::string> write_particle_datasets(const h5::Group& g, const Parti
   const std::size_t n = particles.size();
   std::vector<std::string> written;
   for (const std::string& field : all_frame_fields()) {
-    if (field != "x" && !fields.empty() &&
+    // x and id are always written: a frame is the particles' positions, and id matches them to
+    // the first frame when particles have left the domain.
+    if (field != "x" && field != "id" && !fields.empty() &&
         std::find(fields.begin(), fields.end(), field) == fields.end())
       continue;
     if (field == "temperature" && particles.temperature.empty()) continue;

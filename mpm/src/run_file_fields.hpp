@@ -61,6 +61,11 @@ FieldInfo field_info(const std::string& name) {
   if (name == "body") return {"1", "body id, N", K::scalar, N::int32};
   if (name == "material")
     return {"1", "index into the scene's material list, N", K::scalar, N::int32};
+  if (name == "id")
+    return {"1",
+            "index of the particle at step 0, N (a run with [grid] outside = \"remove\" loses the "
+            "particles that left the domain)",
+            K::scalar, N::int32};
   return {"K", "temperature, N", K::scalar, N::float64};  // "temperature"
 }
 
@@ -128,6 +133,15 @@ void unpack_column(const std::vector<double>& in, std::vector<Mat<D>>& out, int 
     for (int i = 0; i < D; ++i) out[p](i, column) = in[p * D + i];
 }
 
+/// Particles::id, or 0 … N−1 for particles built without ids.
+template <int D>
+std::vector<std::int32_t> particle_ids(const Particles<D>& p) {
+  if (!p.id.empty()) return p.id;
+  std::vector<std::int32_t> ids(p.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = static_cast<std::int32_t>(k);
+  return ids;
+}
+
 /// Number of entries of the particle array behind a frame field (to catch inconsistent input).
 template <int D>
 std::size_t field_size(const Particles<D>& p, const std::string& field) {
@@ -142,6 +156,7 @@ std::size_t field_size(const Particles<D>& p, const std::string& field) {
   if (field == "surface") return p.surface.size();
   if (field == "body") return p.body.size();
   if (field == "material") return p.material.size();
+  if (field == "id") return p.id.empty() ? p.size() : p.id.size();  // empty: the identity
   return p.temperature.size();
 }
 
@@ -161,6 +176,7 @@ h5::Dataset write_field(const h5::Group& g, const Particles<D>& p, const std::st
   if (field == "surface") return g.write(field, p.surface, {n});
   if (field == "body") return g.write(field, p.body, {n});
   if (field == "material") return g.write(field, p.material, {n});
+  if (field == "id") return g.write(field, particle_ids(p), {n});
   return g.write(field, p.temperature, {n});
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "fragmpm/mpm/thermal.hpp"
 #include "step/affine_motion.hpp"
@@ -68,6 +69,8 @@ struct Solver<D>::Impl {
       s.models.push_back({m.bulk_modulus, m.shear_modulus});
       s.material_damages.push_back(m.damages() ? 1 : 0);
       if (m.damages()) s.plan.damage = true;
+      s.departure_speed_limit = std::max(
+          s.departure_speed_limit, departure_speed_factor * s.models.back().wave_speed(m.density));
     }
     s.plan.partitioned = partitioning_active(problem);
     s.plan.by_bodies = problem.contact.partitioning == Partitioning::bodies;
@@ -199,10 +202,10 @@ struct Solver<D>::Impl {
         break;
     }
     if (failure) return failure;
-    if (s.thermal) {
-      s.next_dt_limit = std::min(s.next_dt_limit, s.thermal->dt_limit);
-      s.row.thermal = thermal_energy<D>(s.problem, s.problem.particles);
-    }
+    if (s.thermal) s.next_dt_limit = std::min(s.next_dt_limit, s.thermal->dt_limit);
+    if (s.problem.grid.outside == OutsidePolicy::remove)
+      if (auto departed = remove_departed_particles(s, dt)) return departed;
+    if (s.thermal) s.row.thermal = thermal_energy<D>(s.problem, s.problem.particles);
     s.time += dt;
     ++s.step;
     SeriesRow<D>& row = s.row;
@@ -212,7 +215,7 @@ struct Solver<D>::Impl {
     row.totals = s.totals;
     row.balance_error =
         (row.kinetic + row.strain + s.totals.dissipated + s.totals.friction_work +
-         s.totals.contact_dissipation) -
+         s.totals.contact_dissipation + s.totals.lost.kinetic + s.totals.lost.strain) -
         (s.totals.initial_energy + s.totals.wall_work + s.totals.gravity_work + s.totals.load_work);
     for (std::size_t w = 0; w < s.problem.walls.size(); ++w)
       row.wall_displacement[w] = s.problem.walls[w].velocity.displacement(s.time);
@@ -273,8 +276,20 @@ double Solver<D>::stable_dt() const {
 template <int D>
 void Solver<D>::restore(double time, long long step, const EnergyAccumulators& totals,
                         Particles<D> particles) {
-  impl_->state.problem.particles = std::move(particles);
-  settle_affine(impl_->state.problem);
+  Problem<D>& problem = impl_->state.problem;
+  if (particles.id.size() != particles.size()) {  // a state saved before particles had ids
+    particles.id.resize(particles.size());
+    std::iota(particles.id.begin(), particles.id.end(), 0);
+  }
+  // Loads list particles by their index at step 0, which is the id of a particle in a state from
+  // which particles have been removed.
+  std::vector<std::int64_t> new_index(problem.particles.size(), -1);
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    new_index.at(static_cast<std::size_t>(particles.id[p])) = static_cast<std::int64_t>(p);
+  remap_particle_references(problem, new_index);
+  problem.particles = std::move(particles);
+  if (!impl_->state.load_force.empty()) impl_->state.load_force.resize(problem.particles.size());
+  settle_affine(problem);
   if (impl_->state.thermal) impl_->start_thermal();
   impl_->compute_initial_state();
   impl_->state.time = time;

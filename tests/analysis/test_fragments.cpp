@@ -14,6 +14,7 @@
 #include "fragmpm/analysis/fragment_statistics.hpp"
 #include "fragmpm/analysis/fragments.hpp"
 #include "fragmpm/analysis/frame_fragments.hpp"
+#include "fragmpm/analysis/frame_reference.hpp"
 #include "fragmpm/analysis/union_find.hpp"
 
 namespace fa = fragmpm::analysis;
@@ -420,4 +421,28 @@ TEST(FragmentLabels, LargeBlockIsOneFragment) {
   const fa::FragmentLabels labels = fa::label_fragments(P, P);
   EXPECT_EQ(labels.count(), 1u);
   EXPECT_EQ(labels.particles[0], 90000);
+}
+
+TEST(FrameReference, MatchesTheRemainingParticlesByIdAndCountsTheDeparted) {
+  fm::Particles<2> first;
+  first.resize(5);
+  for (std::size_t p = 0; p < 5; ++p) {
+    first.x[p] = fm::Vec<2>(double(p), 0.0);
+    first.mass[p] = 1.0 + double(p);  // 1 … 5
+  }
+  // Particles 0 and 3 left the domain; the others moved by (0, 1).
+  fm::Particles<2> current = first.select({1, 2, 4});
+  for (auto& x : current.x) x[1] += 1.0;
+  const fa::FrameReference r = fa::frame_reference(first, current);
+  EXPECT_EQ(r.departed, 2u);
+  EXPECT_EQ(r.departed_mass, 1.0 + 4.0);
+  ASSERT_EQ(r.particles.size(), 3u);
+  EXPECT_EQ(r.particles.id, (std::vector<std::int32_t>{1, 2, 4}));
+  EXPECT_EQ(r.particles.x[2], fm::Vec<2>(4.0, 0.0));  // the reference position, not the current
+
+  fm::Particles<2> twice = first.select({1, 1});
+  EXPECT_THROW(fa::frame_reference(first, twice), std::invalid_argument);
+  fm::Particles<2> stranger = first.select({2});
+  stranger.id[0] = 7;
+  EXPECT_THROW(fa::frame_reference(first, stranger), std::invalid_argument);
 }

@@ -379,7 +379,8 @@ TEST(RunFile, XdmfDescribesEveryFrame) {
   EXPECT_EQ(count(text, "Dimensions=\"6 3 3\""), 3u * 2u);  // F, stress padded to 3 x 3
   EXPECT_EQ(count(text, name + ":/xdmf/frames/000001/stress"), 1u);
   EXPECT_EQ(count(text, "Name=\"temperature\""), 3u);
-  EXPECT_EQ(count(text, "<Attribute "), 3u * (3u + 2u + 7u));  // vectors, tensors, scalars
+  // vectors, tensors, scalars (volume0, mass, damage, surface, body, material, temperature, id)
+  EXPECT_EQ(count(text, "<Attribute "), 3u * (3u + 2u + 8u));
 
   run.truncate_after(10);
   const std::string truncated = read_text(xmf);

@@ -137,3 +137,107 @@ TEST(RunCommand, RestartReproducesUninterruptedRunBitForBit) {
 TEST(RunCommand, RestartReproducesUninterruptedApicRunBitForBit) {
   expect_restart_bit_identical("restart-apic", true);
 }
+
+namespace {
+
+// A one-particle pellet flying out of the domain at 100 m/s (it leaves at step 950 of 0.05 µs)
+// beside a block pushed by a traction; `[grid] outside = "remove"` takes it out of the run.
+const char* departure_scene = R"(
+[grid]
+cell_size = "1 mm"
+min = ["0 mm", "0 mm"]
+max = ["30 mm", "20 mm"]
+outside = "remove"
+[time]
+dt = "0.05 us"
+[[materials]]
+name = "steel"
+E = "200 GPa"
+nu = 0.3
+density = "7.8 g/cm3"
+[[bodies]]
+name = "pellet"
+material = "steel"
+shape = "box"
+min = ["25 mm", "10 mm"]
+max = ["25.5 mm", "10.5 mm"]
+velocity = ["100 m/s", "0 m/s"]
+[[bodies]]
+name = "block"
+material = "steel"
+shape = "box"
+min = ["2 mm", "2 mm"]
+max = ["12 mm", "8 mm"]
+[[loads]]
+body = "block"
+side = "-x"
+traction = ["1 MPa", "0 MPa"]
+[stop]
+max_steps = 1100
+[output]
+interval = "20 us"
+)";
+
+}  // namespace
+
+TEST(RunCommand, RestartAcrossARemovalReproducesUninterruptedRunBitForBit) {
+  const fs::path dir = fresh_directory("departure");
+  const std::string scene = (dir / "departure.toml").string();
+  { std::ofstream(scene) << departure_scene; }
+  const std::string whole = (dir / "whole.h5").string();
+  ASSERT_EQ(run_fragmpm("run " + scene + " -o " + whole + " -q", (dir / "log").string()), 0)
+      << read_text((dir / "log").string());
+  const std::string log = read_text((dir / "log").string());
+  EXPECT_NE(log.find("left the domain and removed: 1 particles"), std::string::npos) << log;
+  const auto lost_mass = mpm::read_series(whole, "lost_mass");
+  ASSERT_EQ(lost_mass.size(), 1101u);
+  EXPECT_EQ(lost_mass.front(), 0.0);
+  {
+    auto file = mpm::RunFile<2>::open_existing(whole);
+    const auto first = file.read_frame(0), last = file.read_frame(file.frame_count() - 1);
+    EXPECT_EQ(lost_mass.back(), first.mass[0]);  // the pellet, ρ s² = 1.95 g/m
+    EXPECT_NEAR(first.mass[0], 7800.0 * 0.5e-3 * 0.5e-3, 1e-15);
+    ASSERT_EQ(last.size() + 1, first.size());
+    EXPECT_EQ(last.id.front(), 1);  // the block's particles, renumbered, keep their step-0 index
+    EXPECT_EQ(last.id.back(), static_cast<std::int32_t>(first.size() - 1));
+  }
+  // Stopped before the removal (step 517) and after it (step 1000), then restarted.
+  for (const long long split : {517LL, 1000LL}) {
+    const std::string parts = (dir / ("parts" + std::to_string(split) + ".h5")).string();
+    ASSERT_EQ(
+        run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps " + std::to_string(split),
+                    (dir / "log2").string()),
+        0);
+    ASSERT_EQ(run_fragmpm("run --restart " + parts + " -q", (dir / "log3").string()), 0)
+        << read_text((dir / "log3").string());
+    auto a = mpm::RunFile<2>::open_existing(whole);
+    auto b = mpm::RunFile<2>::open_existing(parts);
+    const auto pa = a.read_frame(a.frame_count() - 1);
+    const auto pb = b.read_frame(b.frame_count() - 1);
+    ASSERT_EQ(pa.size(), pb.size()) << split;
+    EXPECT_EQ(pa.id, pb.id) << split;
+    EXPECT_EQ(std::memcmp(pa.x.data(), pb.x.data(), pa.size() * sizeof(pa.x[0])), 0) << split;
+    EXPECT_EQ(std::memcmp(pa.v.data(), pb.v.data(), pa.size() * sizeof(pa.v[0])), 0) << split;
+    EXPECT_EQ(std::memcmp(pa.stress.data(), pb.stress.data(), pa.size() * sizeof(pa.stress[0])), 0)
+        << split;
+    for (const char* series :
+         {"kinetic", "balance_error", "lost_mass", "lost_kinetic", "lost_momentum", "load_work"}) {
+      const auto ka = mpm::read_series(whole, series), kb = mpm::read_series(parts, series);
+      ASSERT_EQ(ka.size(), kb.size()) << series << " " << split;
+      EXPECT_EQ(std::memcmp(ka.data(), kb.data(), ka.size() * sizeof(double)), 0)
+          << series << " " << split;
+    }
+  }
+  // The fragment analysis matches the remaining particles to the first frame by id and counts the
+  // one that left.
+  ASSERT_EQ(run_fragmpm(
+                "analyze " + whole + " --csv-only --no-figures -o " + (dir / "fragments").string(),
+                (dir / "log4").string()),
+            0)
+      << read_text((dir / "log4").string());
+  const std::string table = read_text(dir / "fragments" / "fragment_series.csv");
+  EXPECT_NE(table.find("departed_particles"), std::string::npos) << table;
+  const std::string last_line =
+      table.substr(table.rfind('\n', table.size() - 2) + 1);  // the last frame, after the removal
+  EXPECT_NE(last_line.find(",1,0.00195"), std::string::npos) << table;
+}

@@ -95,6 +95,13 @@ std::size_t count_body(const mpm::Particles<2>& P, int body) {
 
 // ---------------------------------------------------------------- good scenes
 
+TEST(Scene, OutsidePolicyDefaultsToStop) {
+  EXPECT_EQ(fp::parse_scene(kGood, "good.toml").grid.outside, mpm::OutsidePolicy::stop);
+  const std::string removing = replace(kGood, "max = [\"20 mm\", \"20 mm\"]",
+                                       "max = [\"20 mm\", \"20 mm\"]\noutside = \"remove\"");
+  EXPECT_EQ(fp::parse_scene(removing, "good.toml").grid.outside, mpm::OutsidePolicy::remove);
+}
+
 TEST(Scene, BoxGivesTheExactLatticeCountAndUnitsAreSI) {
   const mpm::Problem<2> p = fp::parse_scene(kGood, "good.toml");
   // Box 4 mm x 2 mm at spacing 0.25 mm: 16 x 8 lattice points.
@@ -519,6 +526,11 @@ std::vector<BadScene> bad_scenes() {
        "time.thermal_pic_fraction", "0 <= thermal_pic_fraction <= 1"},
       {"misspelt_key", replace(kGood, "cell_size =", "cel_size ="), "cel_size", "grid.cel_size",
        "did you mean 'cell_size'"},
+      {"unknown_outside_policy",
+       replace(kGood, "max = [\"20 mm\", \"20 mm\"]",
+               "max = [\"20 mm\", \"20 mm\"]\noutside = \"vanish\""),
+       "outside", "grid.outside",
+       "expected one of \"stop\" (a particle leaving the domain stops the run) or \"remove\""},
       {"unknown_table", kGood + "\n[solver]\norder = 2\n", "[solver]", "solver", "unknown key"},
       {"missing_key", replace(kGood, "density = \"2.3 g/cm3\"\n", ""), "[[materials]]",
        "materials[0].density", "missing required key: expected a density"},

@@ -88,7 +88,7 @@ void check_xmf(const std::string& path, const std::vector<Written>& frames,
     EXPECT_EQ(grid->getGeometry()->getNumberPoints(), n);
     ASSERT_GT(grid->getNumberAttributes(), 0u);
     EXPECT_EQ(grid->getAttribute(0)->getName(), "damage");
-    EXPECT_EQ(grid->getNumberAttributes(), last.temperature.empty() ? 11u : 12u);
+    EXPECT_EQ(grid->getNumberAttributes(), last.temperature.empty() ? 12u : 13u);
     for (unsigned a = 0; a < grid->getNumberAttributes(); ++a) {
       const shared_ptr<XdmfAttribute> attribute = grid->getAttribute(a);
       const std::string name = attribute->getName();
@@ -124,6 +124,8 @@ void check_xmf(const std::string& path, const std::vector<Written>& frames,
           EXPECT_EQ(attribute->getValue<double>(p), last.damage[p]);
         } else if (name == "body") {
           EXPECT_EQ(attribute->getValue<int>(p), last.body[p]);
+        } else if (name == "id") {
+          EXPECT_EQ(attribute->getValue<int>(p), last.id[p]);
         }
       }
     }

@@ -55,6 +55,10 @@ std::optional<NumericalFailure> update_active_region(StepState<D>& state) {
         ") left the computational domain: x = " + format_vector<D>(P.x[outside]) + " m, domain " +
         format_vector<D>(domain_min) + " to " + format_vector<D>(domain_max) +
         " m, v = " + format_vector<D>(P.v[outside]) + " m/s";
+    if (P.x[outside].allFinite())
+      failure.what +=
+          " ([grid] outside = \"remove\" takes particles that leave the domain out of the run "
+          "instead of stopping it)";
     return failure;
   }
   GridIndex<D>& grid = state.grid;

@@ -1,7 +1,9 @@
 #pragma once
 // The stages of one explicit step, in the order solver.cpp calls them. Each is defined in the file
 // of its name in this folder and instantiated there for D = 2, 3 and every shape function.
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "fragmpm/mpm/solver.hpp"
 #include "step/step_state.hpp"
@@ -63,5 +65,16 @@ void thermal_finish(StepState<D>& state, double dt);
 /// the step. (g2p.cpp)
 template <int D, ShapeFunctionKind Kind, bool Partitioned, bool Thermal, bool Affine>
 std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt);
+
+/// With `[grid] outside = "remove"`, after the step: books and removes the particles whose
+/// position left [grid.min, grid.max], and recomputes the next step's Δt limit without them. A
+/// departure with a non-finite state or faster than departure_speed_factor times the largest wave
+/// speed of the scene's materials is a numerical failure. (departures.cpp)
+template <int D>
+std::optional<NumericalFailure> remove_departed_particles(StepState<D>& state, double dt);
+/// Renumbers the particle lists of traction and heat loads: particle k becomes new_index[k], and
+/// entries with new_index[k] < 0 are dropped. (departures.cpp)
+template <int D>
+void remap_particle_references(Problem<D>& problem, const std::vector<std::int64_t>& new_index);
 
 }  // namespace fragmpm::mpm

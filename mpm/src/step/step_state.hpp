@@ -92,6 +92,12 @@ struct WallScratch {
   std::vector<double> work, friction;
 };
 
+/// A particle that leaves the domain faster than this many times the largest wave speed of the
+/// scene's materials stops the run even with `[grid] outside = "remove"`: fragments fly off at
+/// speeds of the order of the impact and wave speeds, while an unstable step accelerates a particle
+/// without bound, so such a departure is a failure, not a fragment.
+inline constexpr double departure_speed_factor = 10.0;
+
 template <int D>
 struct StepState {
   Problem<D> problem;
@@ -105,6 +111,8 @@ struct StepState {
   double next_dt_limit = 0.0;  ///< CFL limit from the state after the last step (C_cfl included)
   double negligible_mass = 0.0;
   double kernel_radius = 0.0;  ///< r_p of the damage field = cell diagonal ([HH17] §2.2) [m]
+  /// departure_speed_factor × the largest wave speed √((K + 4G/3)/ρ₀) of the materials [m/s]
+  double departure_speed_limit = 0.0;
 
   GridIndex<D> grid;
   NodeFields<D> nodes;

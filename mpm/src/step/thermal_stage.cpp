@@ -52,11 +52,7 @@ ThermalState<D>::ThermalState(const Problem<D>& problem) {
     degradation.push_back(problem.materials[m].degradation);
     damages.push_back(problem.materials[m].damages() ? 1 : 0);
   }
-  double lightest = std::numeric_limits<double>::infinity();
-  for (std::size_t p = 0; p < n; ++p)
-    lightest =
-        std::min(lightest, P.mass[p] * specific_heat[static_cast<std::size_t>(P.material[p])]);
-  negligible_capacity = std::isfinite(lightest) ? 1e-10 * lightest : 0.0;
+  set_negligible_capacity(P);
   for (const ThermalWallCondition<D>& c : problem.thermal.walls)
     if (c.kind == ThermalWallKind::flux || c.kind == ThermalWallKind::convection)
       boundary_measure = true;
@@ -64,6 +60,24 @@ ThermalState<D>::ThermalState(const Problem<D>& problem) {
   for (const WallSpec<D>& w : problem.walls)
     if (w.kind == WallKind::contact) wall_friction = true;
   dt_limit = thermal_stable_time_step<D>(problem, P, problem.time.cfl);
+}
+
+template <int D>
+void ThermalState<D>::set_negligible_capacity(const Particles<D>& P) {
+  double lightest = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < P.size(); ++p)
+    lightest =
+        std::min(lightest, P.mass[p] * specific_heat[static_cast<std::size_t>(P.material[p])]);
+  negligible_capacity = std::isfinite(lightest) ? 1e-10 * lightest : 0.0;
+}
+
+template <int D>
+void ThermalState<D>::remove_particles(const Particles<D>& particles,
+                                       const std::vector<std::size_t>& removed) {
+  erase_entries(last_J, removed);
+  erase_entries(last_damage, removed);
+  erase_entries(edge_source, removed);
+  set_negligible_capacity(particles);
 }
 
 namespace {

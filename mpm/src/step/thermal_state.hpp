@@ -23,6 +23,13 @@ struct ThermalState {
 
   explicit ThermalState(const Problem<D>& problem);
 
+  /// Drops the per-particle entries of the particles at `removed` (ascending), which have just
+  /// been erased from `particles`, and takes the negligible capacity from the particles that
+  /// remain, as a restart from this state does.
+  void remove_particles(const Particles<D>& particles, const std::vector<std::size_t>& removed);
+  /// Nodes whose heat capacity is below 1e-10 of the lightest particle's m c carry no temperature.
+  void set_negligible_capacity(const Particles<D>& particles);
+
   /// Thermal part of the trial Cauchy stress of a particle ([XLS21] eq. (3)) [Pa].
   Mat<D> stress(int material, const Mat<D>& F, double temperature) const {
     const std::size_t m = static_cast<std::size_t>(material);

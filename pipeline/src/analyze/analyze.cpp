@@ -14,6 +14,7 @@
 #include "analyze_frames.hpp"
 #include "fragmpm/analysis/figure_error.hpp"
 #include "fragmpm/analysis/fragment_figures.hpp"
+#include "fragmpm/analysis/frame_reference.hpp"
 #include "fragmpm/analysis/si_format.hpp"
 #include "fragmpm/mpm/run_file_fragments.hpp"
 #include "fragmpm/mpm/run_file_reader.hpp"
@@ -47,6 +48,9 @@ std::string describe(const analysis::FrameFragments& r) {
                         analysis::format_si(s.mean_equivalent_diameter, "m", 3),
                         analysis::format_si(s.mass_mean_equivalent_diameter, "m", 3),
                         analysis::format_si(s.largest_equivalent_diameter, "m", 3));
+  if (s.departed_particles > 0)
+    text += fmt::format("; {} particles ({:.4g} kg/m) left the domain and were removed",
+                        s.departed_particles, s.departed_mass);
   text += r.raster_checked ? "\n      " + r.raster.summary()
                            : "\n      raster check skipped: " + r.raster_note;
   return text;
@@ -101,6 +105,8 @@ mpm::TableGroup frame_group_table(const AnalyzeOptions& o, const AnalyzeResult& 
   attribute("masked_particles", static_cast<std::int64_t>(s.masked_particles));
   attribute("fines_mass", s.fines_mass);
   attribute("fines_area", s.fines_area);
+  attribute("departed_particles", static_cast<std::int64_t>(s.departed_particles));
+  attribute("departed_mass", s.departed_mass);
   attribute("raster_check", f.fragments.raster_checked ? f.fragments.raster.summary()
                                                        : "skipped: " + f.fragments.raster_note);
   g.columns = analysis::fragment_frame_datasets(f.fragments);
@@ -272,10 +278,19 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
       const FrameInfo& info = run.frames[k];
       const mpm::Particles<2> current =
           k == 0 ? reference : read_analysis_frame(file, run, info.index);
-      if (current.size() != reference.size())
-        throw AnalyzeError(fmt::format("{}: {} has {} particles but the reference frame {} has {}",
-                                       path, frame_group(info.index), current.size(), first.index,
-                                       reference.size()));
+      // Particles removed after leaving the domain are missing from later frames; the rest find
+      // their reference configuration by id.
+      analysis::FrameReference matched;
+      try {
+        matched = analysis::frame_reference(reference, current);
+      } catch (const std::invalid_argument& e) {
+        throw AnalyzeError(fmt::format("{}: {} does not match the reference frame {}: {}", path,
+                                       frame_group(info.index), first.index, e.what()));
+      }
+      auto count_departed = [&matched](analysis::FragmentSummary& s) {
+        s.departed_particles = matched.departed;
+        s.departed_mass = matched.departed_mass;
+      };
       analysis::FragmentSeriesPoint point;
       point.frame = info.index;
       point.step = info.step;
@@ -290,7 +305,8 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
           f.time = info.time;
           f.platen_displacement = point.platen_displacement;
           f.request = selection[next].request;
-          f.fragments = analysis::analyze_fragments(reference, current, o.fragments);
+          f.fragments = analysis::analyze_fragments(matched.particles, current, o.fragments);
+          count_departed(f.fragments.summary);
           point.summary = f.fragments.summary;
           say(log, fmt::format("  {} -> frame {} (t = {}, step {}{}): {}", f.request, f.frame,
                                analysis::format_si(f.time, "s", 4), f.step,
@@ -303,7 +319,8 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
           ++next;
         } else {
           point.summary = analysis::summarize_fragments(
-              current, analysis::label_fragments(reference, current, o.fragments));
+              current, analysis::label_fragments(matched.particles, current, o.fragments));
+          count_departed(point.summary);
         }
       } catch (const std::invalid_argument& e) {
         throw AnalyzeError(fmt::format("{}: {}: {}", path, frame_group(info.index), e.what()));

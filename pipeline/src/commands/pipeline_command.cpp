@@ -174,6 +174,11 @@ std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& p
       t.friction_work, t.contact_dissipation);
   s << fmt::format("balance:    error {:.4g} J/m = {:.3g} % of input\n", r.last.balance_error,
                    input > 0 ? 100.0 * std::abs(r.last.balance_error) / input : 0.0);
+  if (t.lost.count > 0)
+    s << fmt::format(
+        "departed:   {} particles left the domain and were removed (mass {:.4g} kg/m; kinetic "
+        "{:.4g} and strain {:.4g} J/m at removal, counted in the balance)\n",
+        t.lost.count, t.lost.mass, t.lost.kinetic, t.lost.strain);
   if (a) {
     s << "fragments (resolved; fines apart), analysed frames:\n";
     s << "  frame   time        platen      fragments  fines  mean d_eq   largest d_eq\n";
@@ -187,10 +192,15 @@ std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& p
           m.fragments, m.fines, analysis::format_si(m.mean_equivalent_diameter, "m", 3),
           analysis::format_si(m.largest_equivalent_diameter, "m", 3));
     }
-    if (!a->frames.empty())
-      s << fmt::format("fragments:  {} resolved and {} fines at the last analysed frame\n",
-                       a->frames.back().fragments.summary.fragments,
-                       a->frames.back().fragments.summary.fines);
+    if (!a->frames.empty()) {
+      const analysis::FragmentSummary& last = a->frames.back().fragments.summary;
+      s << fmt::format("fragments:  {} resolved and {} fines at the last analysed frame",
+                       last.fragments, last.fines);
+      if (last.departed_particles > 0)
+        s << fmt::format("; {} particles ({:.4g} kg/m) had left the domain",
+                         last.departed_particles, last.departed_mass);
+      s << "\n";
+    }
   }
   s << fmt::format(
       "wall time:  {:.1f} s total (segmentation and setup {:.1f} s, run {:.1f} s, analysis and "

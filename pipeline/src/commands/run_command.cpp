@@ -70,6 +70,10 @@ int execute(const RunArguments& args) {
                  problem.particles.size(), problem.body_names.size(), problem.walls.size(),
                  problem.grid.cell_size, omp_get_max_threads());
     log_modules(modules);
+    std::fprintf(stderr, "  particles that leave the domain %s\n",
+                 problem.grid.outside == mpm::OutsidePolicy::remove
+                     ? "are removed ([grid] outside = \"remove\"; booked in /series lost_*)"
+                     : "stop the run ([grid] outside = \"stop\")");
     mpm::Solver<2> solver(std::move(problem));
     if (checkpoint)
       solver.restore(checkpoint->time, checkpoint->step, checkpoint->totals,
@@ -106,6 +110,12 @@ int execute(const RunArguments& args) {
         row.totals.gravity_work, row.totals.load_work, row.totals.dissipated,
         row.totals.friction_work, row.totals.contact_dissipation, row.balance_error,
         100.0 * std::abs(row.balance_error) / scale);
+    const mpm::LostParticles& lost = row.totals.lost;
+    if (solver.problem().grid.outside == mpm::OutsidePolicy::remove)
+      std::fprintf(stderr,
+                   "  left the domain and removed: %lld particles, mass %.6g kg/m, kinetic %.6g "
+                   "J/m, strain %.6g J/m (in the balance above)\n",
+                   lost.count, lost.mass, lost.kinetic, lost.strain);
     return 0;
   } catch (const SceneError& e) {
     std::fprintf(stderr, "fragmpm run: %s\n", e.what());

@@ -58,7 +58,7 @@ class NameRegistry {
 };
 
 int read_grid(const Section& g, mpm::GridSpec<2>& grid) {
-  g.allow_only({"cell_size", "min", "max", "shape_function", "particles_per_cell"});
+  g.allow_only({"cell_size", "min", "max", "shape_function", "particles_per_cell", "outside"});
   grid.cell_size = g.quantity("cell_size", QK::length);
   if (!(grid.cell_size > 0.0)) g.expected("cell_size", "a positive length");
   grid.min = g.vector("min", QK::length);
@@ -81,6 +81,15 @@ int read_grid(const Section& g, mpm::GridSpec<2>& grid) {
     grid.shape_function = mpm::ShapeFunctionKind::ugimp;
   else
     g.expected("shape_function", "one of \"cpdi\", \"linear\", \"ugimp\"");
+  const std::string outside = g.optional_string("outside").value_or("stop");
+  if (outside == "stop")
+    grid.outside = mpm::OutsidePolicy::stop;
+  else if (outside == "remove")
+    grid.outside = mpm::OutsidePolicy::remove;
+  else
+    g.expected("outside",
+               "one of \"stop\" (a particle leaving the domain stops the run) or \"remove\" (it "
+               "is taken out of the run and booked in /series lost_mass and lost_kinetic)");
   const long long n = g.optional_integer("particles_per_cell").value_or(2);
   if (n < 1 || n > kMaxParticlesPerCell)
     g.expected("particles_per_cell",

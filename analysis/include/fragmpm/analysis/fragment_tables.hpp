@@ -54,7 +54,8 @@ void write_cdf_csv(const std::string& path, const EmpiricalCdf& cdf,
 
 /// Writes the series as CSV: frame, step, time_s, [platen_displacement_m,] fragments, fines,
 /// fine_particles, masked_particles, mean / mass-weighted mean / largest equivalent diameter [m],
-/// fragment and fines mass [kg/m]. The platen column appears when `platen` is true.
+/// fragment and fines mass [kg/m], departed particles and their mass [kg/m] (those that left the
+/// domain). The platen column appears when `platen` is true.
 void write_fragment_series_csv(const std::string& path, std::span<const FragmentSeriesPoint> points,
                                bool platen);
 

@@ -27,6 +27,11 @@ struct FragmentSummary {
   double fragment_mass = 0.0;                  ///< total mass of the resolved fragments [kg/m]
   double fines_mass = 0.0;                     ///< [kg/m]
   double fines_area = 0.0;                     ///< [m²]
+  /// Particles of the first frame that left the domain and were removed before this frame
+  /// (`[grid] outside = "remove"`), and their mass [kg/m]: material neither in fragments nor in
+  /// fines. Set from frame_reference; summarize_fragments leaves them zero.
+  std::size_t departed_particles = 0;
+  double departed_mass = 0.0;
 };
 
 /// The summary from labels and particle areas and masses alone (no hulls, no rasters): cheap enough

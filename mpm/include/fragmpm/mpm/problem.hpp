@@ -117,12 +117,20 @@ struct ContactSpec {
                                    ///< gradients ([XLS21] eq. (74))
 };
 
+/// What a particle whose position leaves [grid.min, grid.max] does to the run (like LAMMPS's choice
+/// for lost atoms).
+enum class OutsidePolicy {
+  stop,    ///< a numerical failure: the run stops with a diagnostic (exit code 3)
+  remove,  ///< removed between steps; its mass, momentum and energy are booked as lost
+};
+
 template <int D>
 struct GridSpec {
   double cell_size = 0.0;       ///< h [m]
   Vec<D> min = Vec<D>::Zero();  ///< lower corner of the computational domain [m]
   Vec<D> max = Vec<D>::Zero();  ///< upper corner [m]
   ShapeFunctionKind shape_function = ShapeFunctionKind::cpdi;
+  OutsidePolicy outside = OutsidePolicy::stop;
 };
 
 /// How velocities go between particles and grid. FLIP ([XLS21] eq. (64)) lumps each particle's

@@ -1,11 +1,23 @@
 #pragma once
 // Per-step bookkeeping: energies, momentum, wall reactions (docs/design.md "Energy and momentum").
+#include <array>
 #include <string>
 #include <vector>
 
 #include "fragmpm/mpm/types.hpp"
 
 namespace fragmpm::mpm {
+
+/// What the particles removed after leaving the domain (`[grid] outside = "remove"`) carried out of
+/// it, cumulative. The kinetic and stored strain energy enter the energy balance, so a removal does
+/// not change balance_error (docs/design.md, "Energy and momentum bookkeeping").
+struct LostParticles {
+  long long count = 0;
+  double mass = 0.0;                 ///< [kg per unit thickness in 2D]
+  double kinetic = 0.0;              ///< ½ m |v|² (+ the affine part with APIC) at removal [J]
+  double strain = 0.0;               ///< V₀ ψ (the stored, recoverable energy) at removal [J]
+  std::array<double, 3> momentum{};  ///< Σ m v, components 0 … D−1 used [kg m/s]
+};
 
 /// Running totals that a restart must restore exactly.
 struct EnergyAccumulators {
@@ -18,6 +30,7 @@ struct EnergyAccumulators {
   /// work (step/contact_energy.cpp) [J].
   double contact_dissipation = 0.0;
   double initial_energy = 0.0;  ///< kinetic + strain at step 0 [J]
+  LostParticles lost;
 };
 
 /// One row of /series, recorded after each step.
@@ -27,8 +40,9 @@ struct SeriesRow {
   double time = 0.0, dt = 0.0;
   double kinetic = 0.0, strain = 0.0, thermal = 0.0;
   EnergyAccumulators totals;
-  /// (kinetic + strain + dissipated + friction_work + contact_dissipation) − (initial + wall_work +
-  /// gravity_work + load_work): zero for an exact conservative scheme. What remains is the
+  /// (kinetic + strain + dissipated + friction_work + contact_dissipation + lost kinetic + lost
+  /// strain) − (initial + wall_work + gravity_work + load_work): zero for an exact conservative
+  /// scheme. What remains is the
   /// explicit step's own energy error (large at nodes an impact accelerates) and the transfer's
   /// numerical dissipation. With APIC the kinetic energy includes the affine part ½ m tr(C Q Cᵀ).
   double balance_error = 0.0;
