@@ -112,6 +112,20 @@ PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
                                     name, s.y.size(), time.size()));
     spec.series.push_back(std::move(s));
   }
+  // What particles removed after leaving the domain carried out, when some did: without it the
+  // kinetic energy drops at a removal with nothing to show where it went.
+  if (run.has("lost_kinetic") && run.has("lost_strain")) {
+    LineSeries s;
+    s.label = "left the domain";
+    s.x = time;
+    s.y = run.column("lost_kinetic");
+    const std::vector<double>& strain = run.column("lost_strain");
+    if (s.y.size() == time.size() && strain.size() == time.size() &&
+        s.y.back() + strain.back() > 0) {
+      for (std::size_t k = 0; k < s.y.size(); ++k) s.y[k] += strain[k];
+      spec.series.insert(spec.series.end() - 1, std::move(s));  // before the balance error
+    }
+  }
   spec.x_label = fmt::format("time [{}]", rescale(spec.series, true, "s"));
   spec.y_label = fmt::format("energy [{}]", rescale(spec.series, false, "J/m"));
   return spec;

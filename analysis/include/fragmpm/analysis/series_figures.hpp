@@ -10,8 +10,10 @@
 
 namespace fragmpm::analysis {
 
-/// Kinetic, strain, dissipated, friction work, wall work and balance error [J/m in 2D] against
-/// time. Throws mpm::RunFileError when a series is missing, FigureError when it has no rows.
+/// Kinetic, strain, dissipated, friction work, contact loss, wall work, the kinetic + strain energy
+/// of particles removed after leaving the domain (when any were) and balance error [J/m in 2D]
+/// against time. Throws mpm::RunFileError when a series is missing, FigureError when it has no
+/// rows.
 PlotSpec energy_plot_spec(const mpm::RunSeries& series);
 
 /// Each wall's reaction force magnitude |F| [N/m in 2D] against its displacement magnitude |u|;
