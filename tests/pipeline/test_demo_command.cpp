@@ -222,5 +222,9 @@ TEST(PipelineCommand, TinyRunWritesEverything) {
   EXPECT_NE(summary.find("% of input"), std::string::npos) << summary;
   EXPECT_NE(summary.find("fragments (resolved; fines apart)"), std::string::npos) << summary;
   EXPECT_NE(summary.find("wall time:"), std::string::npos) << summary;
+  // The extremes of the last frame (the values are tested in test_state_extremes.cpp).
+  EXPECT_NE(summary.find("end state:  largest J = det F "), std::string::npos) << summary;
+  EXPECT_NE(summary.find("with J > 2, largest |principal stress| "), std::string::npos) << summary;
+  EXPECT_NE(summary.find("(frame 2, t = 100 ns)"), std::string::npos) << summary;
   EXPECT_NE(log.find(summary.substr(0, 24)), std::string::npos);  // the summary is printed too
 }

@@ -51,6 +51,7 @@ TEST(RunCommand, WritesRunFileWithFramesSeriesAndXdmf) {
   EXPECT_NE(file.meta().scene_text.find("disk"), std::string::npos);
   const std::string log = read_text((dir / "log").string());
   EXPECT_NE(log.find("module thermal"), std::string::npos) << "the log says which modules run";
+  EXPECT_NE(log.find("end state: largest J = det F "), std::string::npos) << log;
 }
 
 TEST(RunCommand, RefusesToOverwriteAnExistingRunFile) {

@@ -29,6 +29,7 @@
 #include "fragmpm/analysis/si_format.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 #include "fragmpm/mpm/run_file_reader.hpp"
+#include "fragmpm/mpm/state_extremes.hpp"
 #include "fragmpm/pipeline/analyze.hpp"
 #include "fragmpm/pipeline/commands.hpp"
 #include "fragmpm/pipeline/pipeline_job.hpp"
@@ -141,6 +142,8 @@ struct RunFacts {
   mpm::SeriesRow<2> last;
   bool failed = false;
   std::string failure;
+  /// Extremes of the last frame (the end state of a finished run), or why there are none.
+  std::string end_state;
 };
 
 double input_energy(const mpm::SeriesRow<2>& row) {
@@ -174,6 +177,7 @@ std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& p
       t.friction_work, t.contact_dissipation);
   s << fmt::format("balance:    error {:.4g} J/m = {:.3g} % of input\n", r.last.balance_error,
                    input > 0 ? 100.0 * std::abs(r.last.balance_error) / input : 0.0);
+  if (!r.end_state.empty()) s << fmt::format("end state:  {}\n", r.end_state);
   if (t.lost.count > 0)
     s << fmt::format(
         "departed:   {} particles left the domain and were removed (mass {:.4g} kg/m; kinetic "
@@ -347,6 +351,12 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
     const int last = static_cast<int>(file.frames().size()) - 1;
     double time = 0.0;
     const mpm::Particles<2> particles = file.read_frame<2>(last, &time);
+    const mpm::FrameEntry& frame = file.frames().back();
+    facts.end_state =
+        frame.has("F") && frame.has("stress")
+            ? fmt::format("{} (frame {}, t = {})", mpm::describe(mpm::state_extremes<2>(particles)),
+                          frame.index, analysis::format_si(time, "s", 4))
+            : fmt::format("frame {} has no F or stress (the scene's [output] fields)", frame.index);
     const struct {
       analysis::FrameField field;
       const char* name;

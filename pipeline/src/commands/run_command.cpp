@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "fragmpm/mpm/state_extremes.hpp"
 #include "fragmpm/pipeline/commands.hpp"
 #include "fragmpm/pipeline/run_loop.hpp"
 #include "fragmpm/pipeline/scene.hpp"
@@ -110,6 +111,10 @@ int execute(const RunArguments& args) {
         row.totals.gravity_work, row.totals.load_work, row.totals.dissipated,
         row.totals.friction_work, row.totals.contact_dissipation, row.balance_error,
         100.0 * std::abs(row.balance_error) / scale);
+    // From the finished state, outside the step: J = det F far above 1 marks failed material
+    // spreading out, a principal stress far above the strengths an unstable step.
+    std::fprintf(stderr, "  end state: %s\n",
+                 mpm::describe(mpm::state_extremes<2>(solver.particles())).c_str());
     const mpm::LostParticles& lost = row.totals.lost;
     if (solver.problem().grid.outside == mpm::OutsidePolicy::remove)
       std::fprintf(stderr,
