@@ -35,12 +35,8 @@ inline ConstitutiveResult update_constitutive(StepState<D>& state, std::int64_t 
   const MaterialSpec& spec = state.problem.materials[static_cast<std::size_t>(material)];
   const double damage_before = P.damage[p];
   if constexpr (AdvanceDamage) {
-    // l_ch = particle size: the width of the one-particle band a crack localises in (see
-    // rankine_softening_modulus for why not the paper's cell diagonal).
-    const double band_width = spec.characteristic_length > 0.0
-                                  ? spec.characteristic_length
-                                  : (D == 2 ? std::sqrt(P.volume0[p]) : std::cbrt(P.volume0[p]));
-    update_damage<D>(spec.damage, trial, P.strength[p], band_width, dt, P.damage_history[p],
+    update_damage<D>(spec.damage, trial, P.strength[p],
+                     characteristic_length<D>(spec, P.volume0[p]), dt, P.damage_history[p],
                      P.damage[p]);
   }
   const double d = P.damage[p];

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "fragmpm/mpm/damage_law.hpp"
+#include "fragmpm/mpm/problem.hpp"
 
 namespace fragmpm::pipeline::scene_detail {
 namespace {
@@ -59,8 +60,9 @@ std::string plain(double v) {
   return buf;
 }
 
-/// The snap-back check of 000 eq. (20-21) for one strength: H̄ l_ch < 1 with l_ch the particle
-/// size (the solver's characteristic length; see rankine_softening_modulus).
+/// The snap-back check of [XLS21] eq. (20)-(21) for one strength: H̄ l_ch < 1 with l_ch the
+/// solver's characteristic length (mpm::characteristic_length: the material's
+/// characteristic_length, or the particle size).
 void check_softening(const Section& m, const mpm::MaterialSpec& spec,
                      const mpm::RankineSoftening& law, double strength,
                      const std::string& which_strength, const mpm::GridSpec<2>& grid,
@@ -72,7 +74,7 @@ void check_softening(const Section& m, const mpm::MaterialSpec& spec,
   // when l_ch is the particle size; a given l_ch has to be reduced itself).
   const double h_max =
       mpm::rankine_largest_characteristic_length(strength, law) * grid.cell_size / particle_spacing;
-  if (l_ch != particle_spacing)
+  if (spec.characteristic_length > 0.0)
     m.fail(
         "characteristic_length",
         "expected a characteristic length below " +
@@ -141,8 +143,9 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     if (!(spec.characteristic_length > 0.0))
       m.expected("characteristic_length", "a positive length l_ch (default: the particle size)");
   }
+  // l_ch of a lattice particle (volume s² per unit thickness), as the solver computes it.
   const double band_width =
-      spec.characteristic_length > 0.0 ? spec.characteristic_length : particle_spacing;
+      mpm::characteristic_length<2>(spec, particle_spacing * particle_spacing);
 
   const std::string degradation = m.optional_string("degradation").value_or("tensile");
   if (degradation == "tensile")
@@ -189,7 +192,6 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
 
 void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& sections) {
   mpm::Particles<2>& P = problem.particles;
-  const double l_ch = problem.grid.cell_size * std::sqrt(2.0);
   for (std::size_t m = 0; m < problem.materials.size(); ++m) {
     const mpm::MaterialSpec& spec = problem.materials[m];
     std::vector<std::size_t> mine;
@@ -211,7 +213,9 @@ void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& sect
     const auto* rankine = std::get_if<mpm::RankineSoftening>(&spec.damage);
     for (std::size_t k = 0; k < mine.size(); ++k) {
       P.strength[mine[k]] = s[k];
-      if (rankine && !std::isfinite(mpm::rankine_softening_modulus(s[k], *rankine, l_ch)))
+      // The solver's l_ch of this particle: a draw that snaps back here fails without softening.
+      if (rankine && !std::isfinite(mpm::rankine_softening_modulus(
+                         s[k], *rankine, mpm::characteristic_length<2>(spec, P.volume0[mine[k]]))))
         ++snapping;
     }
     if (snapping > 0)

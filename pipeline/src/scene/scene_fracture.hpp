@@ -18,17 +18,18 @@ const std::vector<std::string_view>& damage_keys();
 
 /// Reads damage, strength, fracture_energy, crack_speed, degradation and weibull of one material
 /// into `spec` (whose elastic constants are already set). `thickness` is [physics] thickness [m]
-/// (needed for Weibull volumes in 2D). For Rankine softening, refuses a cell whose diagonal
-/// l_ch = h √2 makes H̄ l_ch ≥ 1 (snap-back, [XLS21] eq. (20)-(21)), naming the largest admissible
-/// cell size; `particle_spacing` s = h/n gives the particle volume s² × thickness at which a
-/// Weibull material's median strength is checked.
+/// (needed for Weibull volumes in 2D). For Rankine softening, refuses a material whose
+/// characteristic length makes H̄ l_ch ≥ 1 (snap-back, [XLS21] eq. (20)-(21)), naming the largest
+/// admissible cell size (or l_ch when the scene gives one); l_ch is mpm::characteristic_length, the
+/// solver's: the given characteristic_length or the particle size s = `particle_spacing` = h/n.
+/// A Weibull material's median strength is checked at the particle volume s² × thickness.
 void read_damage(const Section& material, mpm::MaterialSpec& spec, std::optional<double> thickness,
                  const mpm::GridSpec<2>& grid, double particle_spacing);
 
 /// Fills Particles::strength: +inf for materials without damage, σ_f for a uniform strength, and a
 /// Weibull draw ([HH17] eq. (25)) per particle otherwise, one seeded stream per material over its
-/// particles in particle order. Warns on stderr when drawn Rankine strengths snap back at this
-/// cell.
+/// particles in particle order. Warns on stderr with the number of drawn Rankine strengths that
+/// snap back at the particle's l_ch (mpm::characteristic_length, as in the solver).
 void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& material_sections);
 
 /// A friction law written as a number (Coulomb μ) or a table { law = "...", ... } under key k of s.

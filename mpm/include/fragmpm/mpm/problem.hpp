@@ -1,6 +1,7 @@
 #pragma once
 // The compiled scene: everything the solver needs, already in SI units and validated.
 // The scene-file parser (pipeline/) fills this; the core never sees TOML or units.
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -35,6 +36,19 @@ struct MaterialSpec {
 
   bool damages() const { return !std::holds_alternative<NoDamage>(damage); }
 };
+
+/// The characteristic length l_ch [m] of a particle of `material` with reference volume V₀ (an area
+/// per unit thickness in 2D): the material's `characteristic_length` when the scene gives one,
+/// otherwise the particle size V₀^(1/D), the width of the one-particle band a crack localises in
+/// (rankine_softening_modulus says why not the cell diagonal of [XLS21] §2.1). The one definition
+/// behind the damage update (the softening modulus [XLS21] eq. (20)-(21) and the time to failure
+/// τ = l_ch / c_f, [HH17] eq. (24)), the scene compiler's snap-back check and its count of Weibull
+/// draws that snap back.
+template <int D>
+inline double characteristic_length(const MaterialSpec& material, double reference_volume) {
+  if (material.characteristic_length > 0.0) return material.characteristic_length;
+  return D == 2 ? std::sqrt(reference_volume) : std::cbrt(reference_volume);
+}
 
 /// contact: one-sided, frictional (Coulomb μ = friction); roller: bilateral normal constraint, free
 /// tangentially; fixed: the material moves with the wall.
