@@ -168,7 +168,8 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     r.youngs_modulus = youngs_modulus(spec);
     spec.damage = r;
     // With Weibull strengths the nominal strength checked is the median at the particles' volume;
-    // stronger draws that snap back fail without softening (warned in assign_strengths).
+    // stronger draws that snap back are capped at the snap-back limit by the damage update
+    // (warned in assign_strengths).
     if (spec.weibull)
       check_softening(m, spec, r,
                       mpm::weibull_median_strength(particle_spacing * particle_spacing,
@@ -213,7 +214,7 @@ void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& sect
     const auto* rankine = std::get_if<mpm::RankineSoftening>(&spec.damage);
     for (std::size_t k = 0; k < mine.size(); ++k) {
       P.strength[mine[k]] = s[k];
-      // The solver's l_ch of this particle: a draw that snaps back here fails without softening.
+      // The solver's l_ch of this particle: the damage update caps a draw that snaps back here.
       if (rankine && !std::isfinite(mpm::rankine_softening_modulus(
                          s[k], *rankine, mpm::characteristic_length<2>(spec, P.volume0[mine[k]]))))
         ++snapping;
@@ -224,7 +225,7 @@ void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& sect
                 << mine.size()
                 << " particles drew a Weibull strength for which the cell is too coarse "
                    "(snap-back, H̄ l_ch >= 1); "
-                   "they fail without softening\n";
+                   "their strength is capped at sqrt(2 E G_f / l_ch), at which they fail at once\n";
   }
 }
 
