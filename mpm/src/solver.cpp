@@ -22,29 +22,6 @@ constexpr double negligible_node_mass_fraction = 1e-10;
 
 }  // namespace
 
-template <int D>
-double stable_time_step(const Problem<D>& problem, const Particles<D>& particles, double cfl) {
-  std::vector<NeoHookean> models;
-  for (const auto& m : problem.materials) models.push_back({m.bulk_modulus, m.shear_modulus});
-  double max_speed = 0.0;
-  const std::int64_t n = static_cast<std::int64_t>(particles.size());
-#pragma omp parallel for reduction(max : max_speed) schedule(static)
-  for (std::int64_t p = 0; p < n; ++p) {
-    const double J = particles.F[p].determinant();
-    const double density = particles.mass[p] / (particles.volume0[p] * J);
-    const double c = models[particles.material[p]].wave_speed(density);
-    max_speed = std::max(max_speed, c + particles.v[p].norm());
-  }
-  // The explicit conduction limit joins the CFL limit when the thermal module runs
-  // (docs/design.md).
-  const double thermal_limit = thermal_stable_time_step<D>(problem, particles, cfl);
-  if (max_speed <= 0.0) return thermal_limit;
-  // Multilinear hats with a lumped mass: the stiffest grid mode of a cell has ω = 2c√D/h, so
-  // central-difference stepping is stable for Δt < 2/ω = h/(c√D). The 1D textbook h/c is the 1D
-  // value and lets a 2D scene run unstably at C_cfl close to 1.
-  return std::min(thermal_limit, cfl * problem.grid.cell_size / (std::sqrt(double(D)) * max_speed));
-}
-
 namespace {
 /// FLIP carries no affine field: whatever a scene set (the velocity gradient of a spin) would
 /// otherwise count in the kinetic energy and angular momentum of a run that never transfers it.
@@ -300,8 +277,6 @@ void Solver<D>::restore(double time, long long step, const EnergyAccumulators& t
   impl_->state.row.totals = totals;
 }
 
-template double stable_time_step<2>(const Problem<2>&, const Particles<2>&, double);
-template double stable_time_step<3>(const Problem<3>&, const Particles<3>&, double);
 template class Solver<2>;
 template class Solver<3>;
 

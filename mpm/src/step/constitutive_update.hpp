@@ -36,8 +36,8 @@ inline ConstitutiveResult update_constitutive(StepState<D>& state, std::int64_t 
   const double damage_before = P.damage[p];
   if constexpr (AdvanceDamage) {
     update_damage<D>(spec.damage, trial, P.strength[p],
-                     characteristic_length<D>(spec, P.volume0[p]), dt, P.damage_history[p],
-                     P.damage[p]);
+                     characteristic_length<D>(spec, P.volume0[p], state.grid.cell_size), dt,
+                     P.damage_history[p], P.damage[p]);
   }
   const double d = P.damage[p];
   if (d <= 0.0) {

@@ -62,18 +62,17 @@ std::string plain(double v) {
 
 /// The snap-back check of [XLS21] eq. (20)-(21) for one strength: H̄ l_ch < 1 with l_ch the
 /// solver's characteristic length (mpm::characteristic_length: the material's
-/// characteristic_length, or the particle size).
+/// characteristic_length, or the calibrated band width of rankine_band_cells cells).
 void check_softening(const Section& m, const mpm::MaterialSpec& spec,
                      const mpm::RankineSoftening& law, double strength,
-                     const std::string& which_strength, const mpm::GridSpec<2>& grid,
-                     double particle_spacing, double l_ch) {
+                     const std::string& which_strength, const mpm::GridSpec<2>& grid, double l_ch) {
   if (std::isfinite(mpm::rankine_softening_modulus(strength, law, l_ch))) return;
   const double hbar_l =
       strength * strength * l_ch / (2.0 * law.youngs_modulus * law.fracture_energy);
-  // Particles per cell stay fixed, so the cell size scales with the particle size (and with l_ch
-  // when l_ch is the particle size; a given l_ch has to be reduced itself).
+  // The default l_ch is proportional to the cell size, so the cell may grow by l_max / l_ch (a
+  // given l_ch has to be reduced itself).
   const double h_max =
-      mpm::rankine_largest_characteristic_length(strength, law) * grid.cell_size / particle_spacing;
+      mpm::rankine_largest_characteristic_length(strength, law) * grid.cell_size / l_ch;
   if (spec.characteristic_length > 0.0)
     m.fail(
         "characteristic_length",
@@ -88,8 +87,8 @@ void check_softening(const Section& m, const mpm::MaterialSpec& spec,
              "': cell too coarse for this material (snap-back), H̄ l_ch = σ_f² l_ch / (2 E G_f) = " +
              plain(hbar_l) + " >= 1 with σ_f = " + si(strength, "Pa") + " (" + which_strength +
              "), E = " + si(law.youngs_modulus, "Pa") +
-             ", G_f = " + si(law.fracture_energy, "J/m2") + " and l_ch = particle size " +
-             si(l_ch, "m") + " (grid.cell_size = " + si(grid.cell_size, "m") +
+             ", G_f = " + si(law.fracture_energy, "J/m2") + " and l_ch = " + si(l_ch, "m") +
+             " (grid.cell_size = " + si(grid.cell_size, "m") +
              "); the largest admissible cell size is " + si(h_max, "m") +
              " (strictly below), or a fracture energy above " + si(gf_min, "J/m2") +
              " at this cell size ([XLS21] eq. (20)-(21))");
@@ -145,7 +144,7 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
   }
   // l_ch of a lattice particle (volume s² per unit thickness), as the solver computes it.
   const double band_width =
-      mpm::characteristic_length<2>(spec, particle_spacing * particle_spacing);
+      mpm::characteristic_length<2>(spec, particle_spacing * particle_spacing, grid.cell_size);
 
   const std::string degradation = m.optional_string("degradation").value_or("tensile");
   if (degradation == "tensile")
@@ -174,10 +173,9 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
       check_softening(m, spec, r,
                       mpm::weibull_median_strength(particle_spacing * particle_spacing,
                                                    spec.weibull_strength, 2),
-                      "the Weibull median at the particle volume", grid, particle_spacing,
-                      band_width);
+                      "the Weibull median at the particle volume", grid, band_width);
     else
-      check_softening(m, spec, r, spec.strength, "strength", grid, particle_spacing, band_width);
+      check_softening(m, spec, r, spec.strength, "strength", grid, band_width);
   } else {
     if (m.has("fracture_energy"))
       m.fail("fracture_energy",
@@ -215,8 +213,10 @@ void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& sect
     for (std::size_t k = 0; k < mine.size(); ++k) {
       P.strength[mine[k]] = s[k];
       // The solver's l_ch of this particle: the damage update caps a draw that snaps back here.
-      if (rankine && !std::isfinite(mpm::rankine_softening_modulus(
-                         s[k], *rankine, mpm::characteristic_length<2>(spec, P.volume0[mine[k]]))))
+      if (rankine &&
+          !std::isfinite(mpm::rankine_softening_modulus(
+              s[k], *rankine,
+              mpm::characteristic_length<2>(spec, P.volume0[mine[k]], problem.grid.cell_size))))
         ++snapping;
     }
     if (snapping > 0)
