@@ -194,34 +194,30 @@ TEST(SceneFracture, SnapBackNamesTheLargestAdmissibleCellSize) {
 
 TEST(SceneFracture, WeibullSnapBackWarningCountsWithTheSolversCharacteristicLength) {
   // Rankine glass of kScene with Weibull strengths, V̄ = the particle volume s² t = (0.25 mm)² ×
-  // 1 mm, so the median draw is σ̄_f. The solver's l_ch is the particle size s = 0.25 mm: a draw
-  // snaps back (H̄ l_ch ≥ 1) above σ_snap = √(2 E G_f / s) = 105.8 MPa. (The cell diagonal,
-  // 0.707 mm, would put the limit at 62.9 MPa and count draws that the solver softens correctly.)
-  const double E = 70e9, G_f = 20.0, s = 0.25e-3;
-  const double snap = std::sqrt(2.0 * E * G_f / s);
-  EXPECT_NEAR(snap, 105.83e6, 0.01e6);
+  // 1 mm, so the median draw is σ̄_f. The solver's l_ch is the calibrated band width 1.13 h =
+  // 0.565 mm (h = 0.5 mm): a draw snaps back (H̄ l_ch ≥ 1) above σ_snap = √(2 E G_f / l_ch) =
+  // 70.4 MPa.
+  const double E = 70e9, G_f = 20.0, l_ch = mpm::rankine_band_cells * 0.5e-3;
+  const double snap = std::sqrt(2.0 * E * G_f / l_ch);
+  EXPECT_NEAR(snap, 70.40e6, 0.01e6);
   auto scene = [](const std::string& median) {
     return replace(replace(kScene, "strength = \"50 MPa\"",
                            "weibull = { reference_strength = \"" + median +
                                "\", reference_volume = \"0.0625 mm3\", modulus = 6, seed = 3 }"),
                    "[[materials]]", "[physics]\nthickness = \"1 mm\"\n\n[[materials]]");
   };
-  // Median 60 MPa: P(σ > 105.8 MPa) = exp(−ln 2 (105.8/60)⁶) = 8e-10, so no draw snaps back; 46 of
-  // the 128 draws lie above the cell-diagonal limit, which the warning counted before.
+  // Median 30 MPa: P(σ > 70.4 MPa) = exp(−ln 2 (70.4/30)⁶) ≈ 1e-50, so no draw snaps back.
   testing::internal::CaptureStderr();
-  const mpm::Problem<2> weak = fp::parse_scene(scene("60 MPa"), "weak.toml");
+  const mpm::Problem<2> weak = fp::parse_scene(scene("30 MPa"), "weak.toml");
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
-  std::size_t above_diagonal_limit = 0;
-  for (double strength : weak.particles.strength)
-    if (strength >= std::sqrt(2.0 * E * G_f / (std::sqrt(2.0) * 2 * s))) ++above_diagonal_limit;
-  EXPECT_EQ(above_diagonal_limit, 46u);
-  // Median 95 MPa: some draws snap back; the warning counts exactly those above σ_snap.
+  for (double strength : weak.particles.strength) EXPECT_LT(strength, snap);
+  // Median 60 MPa: P(σ > σ_snap) = 0.16; the warning counts exactly the draws above σ_snap.
   testing::internal::CaptureStderr();
-  const mpm::Problem<2> strong = fp::parse_scene(scene("95 MPa"), "strong.toml");
+  const mpm::Problem<2> strong = fp::parse_scene(scene("60 MPa"), "strong.toml");
   const std::string warning = testing::internal::GetCapturedStderr();
   std::size_t snapping = 0;
   for (double strength : strong.particles.strength)
-    if (strength * strength * s / (2.0 * E * G_f) >= 1.0) ++snapping;
+    if (strength * strength * l_ch / (2.0 * E * G_f) >= 1.0) ++snapping;
   EXPECT_GT(snapping, 10u);
   EXPECT_NE(warning.find("strong.toml:"), std::string::npos) << warning;
   EXPECT_NE(warning.find(": " + std::to_string(snapping) + " of " +
