@@ -20,7 +20,8 @@ const std::vector<VerifyCase>& verify_cases() {
       {"notched-bar", "V6 notched bar struck by a disk: damage dissipation vs G_f x crack",
        verify_notched_bar},
       {"bar-tension",
-       "V-notched bar pulled apart: damage dissipation vs G_f x ligament at three resolutions",
+       "uniform bar with a weaker column pulled apart: damage dissipation vs G_f x height, three "
+       "resolutions",
        verify_bar_tension},
       {"kalthoff", "P1 Kalthoff-Winkler plate: crack angle and crack speed", verify_kalthoff},
       {"conduction", "V4 one-dimensional heat conduction from a temperature step vs erfc",

@@ -66,8 +66,8 @@ std::vector<VerifyRow> verify_billet(const VerifyOptions& options);
 /// V6: dissipated energy of a notched bar against G_f × formed crack ([HH17] §3.3).
 std::vector<VerifyRow> verify_notched_bar(const VerifyOptions& options);
 
-/// Fracture energy of a V-notched bar pulled apart: damage dissipation against G_f × ligament at
-/// three resolutions, and the width of the fully damaged band against l_ch.
+/// Fracture energy of a bar pulled apart (one weaker particle column): damage dissipation against
+/// G_f × height at three resolutions, and the width of the fully damaged band against l_ch.
 std::vector<VerifyRow> verify_bar_tension(const VerifyOptions& options);
 
 /// P1: Kalthoff–Winkler crack angle and speed ([XLS21] §4.3; [HH17] §3.2).
