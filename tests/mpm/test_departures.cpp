@@ -9,6 +9,7 @@
 #include <numbers>
 #include <string>
 
+#include "../support/departure_scene.hpp"
 #include "fragmpm/mpm/solver.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 
@@ -17,49 +18,9 @@ using mpm::Vec;
 
 namespace {
 
-// Body 0 is a one-particle steel pellet (the lattice point (25.25, 10.25) mm of s = 0.5 mm) flying
-// at 100 m/s towards x = 30 mm; body 1 a vibrating steel block pushed by a traction on its left
-// side, 12 mm away from the pellet's path. The pellet is first, so its removal renumbers the
-// block's particles and its load.
-const char* scene = R"(
-[grid]
-cell_size = "1 mm"
-min = ["0 mm", "0 mm"]
-max = ["MAX_X", "20 mm"]
-outside = "OUTSIDE"
-[time]
-dt = "0.05 us"
-[[materials]]
-name = "steel"
-E = "200 GPa"
-nu = 0.3
-density = "7.8 g/cm3"
-[[bodies]]
-name = "pellet"
-material = "steel"
-shape = "box"
-min = ["25 mm", "10 mm"]
-max = ["25.5 mm", "10.5 mm"]
-velocity = ["100 m/s", "0 m/s"]
-[[bodies]]
-name = "block"
-material = "steel"
-shape = "box"
-min = ["2 mm", "2 mm"]
-max = ["12 mm", "8 mm"]
-[[loads]]
-body = "block"
-side = "-x"
-traction = ["1 MPa", "0 MPa"]
-[stop]
-max_steps = 1000
-)";
-
 mpm::Problem<2> problem(const std::string& max_x, const std::string& outside) {
-  std::string text = scene;
-  text.replace(text.find("MAX_X"), 5, max_x);
-  text.replace(text.find("OUTSIDE"), 7, outside);
-  mpm::Problem<2> p = pipeline::parse_scene(text, "departure.toml");
+  mpm::Problem<2> p =
+      pipeline::parse_scene(test_support::departure_scene(max_x, outside, 1000), "departure.toml");
   // A vibration of the block, so that its strain energy and the balance are not trivial.
   for (std::size_t k = 0; k < p.particles.size(); ++k)
     if (p.particles.body[k] == 1)

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "../support/departure_scene.hpp"
 #include "../support/read_text.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
@@ -143,41 +144,8 @@ namespace {
 
 // A one-particle pellet flying out of the domain at 100 m/s (it leaves at step 950 of 0.05 µs)
 // beside a block pushed by a traction; `[grid] outside = "remove"` takes it out of the run.
-const char* departure_scene = R"(
-[grid]
-cell_size = "1 mm"
-min = ["0 mm", "0 mm"]
-max = ["30 mm", "20 mm"]
-outside = "remove"
-[time]
-dt = "0.05 us"
-[[materials]]
-name = "steel"
-E = "200 GPa"
-nu = 0.3
-density = "7.8 g/cm3"
-[[bodies]]
-name = "pellet"
-material = "steel"
-shape = "box"
-min = ["25 mm", "10 mm"]
-max = ["25.5 mm", "10.5 mm"]
-velocity = ["100 m/s", "0 m/s"]
-[[bodies]]
-name = "block"
-material = "steel"
-shape = "box"
-min = ["2 mm", "2 mm"]
-max = ["12 mm", "8 mm"]
-[[loads]]
-body = "block"
-side = "-x"
-traction = ["1 MPa", "0 MPa"]
-[stop]
-max_steps = 1100
-[output]
-interval = "20 us"
-)";
+const std::string departure_scene =
+    test_support::departure_scene("30 mm", "remove", 1100, "[output]\ninterval = \"20 us\"\n");
 
 }  // namespace
 
