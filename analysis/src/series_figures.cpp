@@ -98,11 +98,15 @@ PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
                                                          {"dissipated", "dissipated (damage)"},
                                                          {"friction_work", "friction work"},
                                                          {"contact_dissipation", "contact loss"},
+                                                         {"transfer_dissipation", "transfer loss"},
                                                          {"wall_work", "wall work"},
                                                          {"balance_error", "balance error"}};
   for (const auto& [name, label] : columns) {
-    // Run files written before the contact loss was booked have no such series.
-    if (std::string_view(name) == "contact_dissipation" && !run.has(name)) continue;
+    // Run files written before the contact and transfer losses were booked have no such series.
+    if ((std::string_view(name) == "contact_dissipation" ||
+         std::string_view(name) == "transfer_dissipation") &&
+        !run.has(name))
+      continue;
     LineSeries s;
     s.label = label;
     s.x = time;

@@ -69,6 +69,10 @@ const std::vector<ScalarColumn<D>>& scalar_columns() {
       {"contact_dissipation",
        "plastic collision loss of grid contact and walls, beyond friction (cumulative)", true, "",
        [](const R& r) { return r.totals.contact_dissipation; }},
+      {"transfer_dissipation",
+       "kinetic energy the grid-to-particle transfer removes (FLIP smoothing, PIC projection; "
+       "cumulative)",
+       true, "", [](const R& r) { return r.totals.transfer_dissipation; }, true},
       {"wall_work", "work of the walls on the material (cumulative)", true, "",
        [](const R& r) { return r.totals.wall_work; }},
       {"gravity_work", "work of gravity (cumulative)", true, "",
@@ -412,6 +416,7 @@ const std::vector<std::pair<const char*, double EnergyAccumulators::*>>& accumul
       {"friction_work", &EnergyAccumulators::friction_work},
       {"dissipated", &EnergyAccumulators::dissipated},
       {"contact_dissipation", &EnergyAccumulators::contact_dissipation},
+      {"transfer_dissipation", &EnergyAccumulators::transfer_dissipation},
       {"initial_energy", &EnergyAccumulators::initial_energy},
   };
   return fields;

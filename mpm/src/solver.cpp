@@ -132,7 +132,10 @@ struct Solver<D>::Impl {
     if (!s.problem.walls.empty()) apply_walls(s, dt);
     if (s.plan.books_contact) book_contact_energy(s, dt, friction_before, wall_work_before);
     if constexpr (Thermal) thermal_finish<D, Kind, Partitioned>(s, dt);  // [XLS21] Alg. 1
-    return grid_to_particles<D, Kind, Partitioned, Thermal, Affine>(s, dt);
+    const double kinetic_from_nodes = s.row.kinetic + nodal_kinetic_energy_change(s);
+    auto failure = grid_to_particles<D, Kind, Partitioned, Thermal, Affine>(s, dt);
+    if (!failure) s.totals.transfer_dissipation += kinetic_from_nodes - s.row.kinetic;
+    return failure;
   }
 
   template <ShapeFunctionKind Kind, bool Affine>
@@ -192,7 +195,8 @@ struct Solver<D>::Impl {
     row.totals = s.totals;
     row.balance_error =
         (row.kinetic + row.strain + s.totals.dissipated + s.totals.friction_work +
-         s.totals.contact_dissipation + s.totals.lost.kinetic + s.totals.lost.strain) -
+         s.totals.contact_dissipation + s.totals.transfer_dissipation + s.totals.lost.kinetic +
+         s.totals.lost.strain) -
         (s.totals.initial_energy + s.totals.wall_work + s.totals.gravity_work + s.totals.load_work);
     for (std::size_t w = 0; w < s.problem.walls.size(); ++w)
       row.wall_displacement[w] = s.problem.walls[w].velocity.displacement(s.time);

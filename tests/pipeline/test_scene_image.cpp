@@ -2,6 +2,7 @@
 // particle area per grain equal to the grain's area, surface flags at every grain boundary, errors
 // with file, line and key.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -55,9 +56,12 @@ velocity = ["0 m/s", "-1 m/s"]
 end_time = "1 us"
 )";
 
-/// A temp directory holding the synthetic disks image; scenes are written next to it.
+/// A temp directory holding the synthetic disks image; scenes are written next to it. One per
+/// process: ctest -j runs these tests in parallel processes, and one must not read the image while
+/// another is writing it.
 fs::path fixture_dir() {
-  const fs::path dir = fs::path(::testing::TempDir()) / "fragmpm_scene_image";
+  const fs::path dir =
+      fs::path(::testing::TempDir()) / ("fragmpm_scene_image_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   if (!fs::exists(dir / "disks.png"))
     cv::imwrite((dir / "disks.png").string(), fp::synthetic_disks().image);

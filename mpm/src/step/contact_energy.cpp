@@ -12,8 +12,9 @@
 // gives N = −½ m |l|², the kinetic energy it brought. So the energy of the nodes contact touched,
 // less the walls' work and the friction work, is the plastic loss of the collisions:
 //     contact_dissipation += W_walls − friction − Σ_touched N_i.
-// The explicit error at the other nodes and the transfer gap stay in balance_error. The FLIP/PIC
-// blend ζ weighs the two forms of N by 1 − ζ and ζ.
+// The explicit error at the other nodes stays in balance_error; the transfer gap G is booked as
+// transfer_dissipation (transfer_energy.cpp). The FLIP/PIC blend ζ weighs the two forms of N by
+// 1 − ζ and ζ.
 #include "step/stages.hpp"
 
 namespace fragmpm::mpm {

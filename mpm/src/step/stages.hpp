@@ -53,6 +53,12 @@ template <int D>
 void book_contact_energy(StepState<D>& state, double dt, double friction_before,
                          double wall_work_before);
 
+/// The particles' kinetic energy after G2P as the nodes give it, less the starting kinetic energy:
+/// Σ_i (1 − ζ)(m l·a + ½ m|a|²) + ζ ½ m (|v|² − |l|²). The particles end with less by the
+/// transfer's smoothing, booked as transfer_dissipation. (transfer_energy.cpp)
+template <int D>
+double nodal_kinetic_energy_change(const StepState<D>& state);
+
 /// Nodal capacities and temperatures θⁿ, before the grid update. (thermal_stage.cpp)
 template <int D, ShapeFunctionKind Kind, bool Partitioned>
 void thermal_begin(StepState<D>& state);

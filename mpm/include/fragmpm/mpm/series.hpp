@@ -29,6 +29,9 @@ struct EnergyAccumulators {
   /// What grid contact and walls take out as perfectly plastic collisions, beyond the friction
   /// work (step/contact_energy.cpp) [J].
   double contact_dissipation = 0.0;
+  /// Kinetic energy the grid-to-particle transfer removes: FLIP's smoothing of the nodal
+  /// increments, PIC's projection (step/transfer_energy.cpp) [J].
+  double transfer_dissipation = 0.0;
   double initial_energy = 0.0;  ///< kinetic + strain at step 0 [J]
   LostParticles lost;
 };
@@ -40,11 +43,11 @@ struct SeriesRow {
   double time = 0.0, dt = 0.0;
   double kinetic = 0.0, strain = 0.0, thermal = 0.0;
   EnergyAccumulators totals;
-  /// (kinetic + strain + dissipated + friction_work + contact_dissipation + lost kinetic + lost
-  /// strain) − (initial + wall_work + gravity_work + load_work): zero for an exact conservative
-  /// scheme. What remains is the
-  /// explicit step's own energy error (large at nodes an impact accelerates) and the transfer's
-  /// numerical dissipation. With APIC the kinetic energy includes the affine part ½ m tr(C Q Cᵀ).
+  /// (kinetic + strain + dissipated + friction_work + contact_dissipation + transfer_dissipation +
+  /// lost kinetic + lost strain) − (initial + wall_work + gravity_work + load_work): zero for an
+  /// exact conservative scheme. What remains is the explicit step's own energy error (large at
+  /// nodes an impact accelerates). With APIC the kinetic energy includes the affine part ½ m tr(C Q
+  /// Cᵀ).
   double balance_error = 0.0;
   Vec<D> momentum = Vec<D>::Zero();
   /// About the origin, Σ m_p (x_p × v_p + ε:(C_p Q_p)) with Q_p the second moment of the particle's
