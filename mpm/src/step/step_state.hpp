@@ -29,6 +29,9 @@ struct StepPlan {
   bool books_contact = false;       ///< two-field nodes or walls exist: book the contact energy
 };
 
+/// Bits of NodeFields::touched: which stage changed a node's velocities this step.
+inline constexpr std::uint8_t touched_by_contact = 1, touched_by_wall = 2;
+
 /// Per node and field (field 1 exists only when the step is partitioned).
 template <int D>
 struct NodeFields {
@@ -36,8 +39,8 @@ struct NodeFields {
   std::array<std::vector<Vec<D>>, 2> momentum, force;
   std::array<std::vector<Vec<D>>, 2> velocity_lumped;  ///< p_i / m_i before the grid update
   std::array<std::vector<Vec<D>>, 2> velocity;         ///< after the grid update, contact and walls
-  /// 1 where contact or a wall changed a field's velocity this step (kept while the plan books
-  /// contact energy).
+  /// touched_by_contact | touched_by_wall where contact or a wall changed a field's velocity this
+  /// step (kept while the plan books contact energy).
   std::vector<std::uint8_t> touched;
 };
 

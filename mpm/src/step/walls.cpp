@@ -94,7 +94,7 @@ void apply_walls(StepState<D>& state, double dt) {
         double friction = 0.0;
         const Vec<D> change = wall_change(state, wall, wall_velocity, f, i, dt, friction);
         state.nodes.velocity[f][i] += change;
-        if (change.squaredNorm() > 0.0) state.nodes.touched[i] = 1;
+        if (change.squaredNorm() > 0.0) state.nodes.touched[i] |= touched_by_wall;
         impulse += m * change;
         work += m * change.dot(wall_velocity);
         friction_sum += friction;
