@@ -50,8 +50,11 @@ inline constexpr double rankine_band_cells = 1.13;
 /// The characteristic length l_ch [m] of a particle of `material` with reference volume V₀ (an area
 /// per unit thickness in 2D) on a grid of `cell_size` h: the material's `characteristic_length`
 /// when the scene gives one; for Rankine softening the band width rankine_band_cells × h; for time
-/// to failure the particle size V₀^(1/D), so that τ = l_ch / c_f is the time a crack at speed c_f
-/// needs to cross one particle. The one definition behind the damage update (the softening modulus
+/// to failure the cell diagonal √D h of [HH17] §2.7, τ = l_ch / c_f. A particle ahead of a running
+/// crack starts to fail before the one behind it has finished, so a crack does not advance one
+/// particle per τ: measured on the pulled bar (`fragmpm verify bar-tension`), τ from the cell
+/// diagonal runs the crack at 0.99 and 1.07 c_f at h = 0.5 and 0.25 mm, τ from the particle size
+/// at 1.41 and 1.45 c_f. The one definition behind the damage update (the softening modulus
 /// [XLS21] eq. (20)-(21) and τ of [HH17] eq. (24)), the scene compiler's snap-back check and its
 /// count of Weibull draws above the snap-back limit.
 template <int D>
@@ -60,7 +63,8 @@ inline double characteristic_length(const MaterialSpec& material, double referen
   if (material.characteristic_length > 0.0) return material.characteristic_length;
   if (std::holds_alternative<RankineSoftening>(material.damage))
     return rankine_band_cells * cell_size;
-  return D == 2 ? std::sqrt(reference_volume) : std::cbrt(reference_volume);
+  (void)reference_volume;
+  return std::sqrt(double(D)) * cell_size;
 }
 
 /// contact: one-sided, frictional (Coulomb μ = friction); roller: bilateral normal constraint, free

@@ -36,6 +36,7 @@ struct VerifyRow {
 struct VerifyOptions {
   bool quick = false;  ///< fewer, coarser levels (CI)
   int threads = 0;
+  std::string output_directory;  ///< where cases write their own figures (empty: none)
 };
 
 struct VerifyCase {
@@ -72,6 +73,9 @@ std::vector<VerifyRow> verify_bar_tension(const VerifyOptions& options);
 
 /// P1: Kalthoff–Winkler crack angle and speed ([XLS21] §4.3; [HH17] §3.2).
 std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options);
+/// P5: Brazilian disk fragment statistics at two resolutions, three Weibull seeds, partitioned and
+/// single-field ([HH17] §3.4); writes the pooled CDF figures.
+std::vector<VerifyRow> verify_brazilian(const VerifyOptions& options);
 
 /// V4: one-dimensional conduction from a temperature step against the erfc solution.
 std::vector<VerifyRow> verify_conduction(const VerifyOptions& options);
