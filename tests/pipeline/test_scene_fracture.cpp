@@ -179,16 +179,17 @@ TEST(SceneFracture, WeibullStrengthsAreSeededPerParticleDraws) {
 }
 
 TEST(SceneFracture, SnapBackNamesTheLargestAdmissibleCellSize) {
-  // G_f = 10 J/m²: l_max = 2 E G_f / σ_f² = 0.56 mm, so h_max = 2 l_max = 1.12 mm < h = 1.5 mm.
+  // G_f = 10 J/m²: l_max = 2 E G_f / σ_f² = 0.56 mm; the solver's l_ch is 1.13 h, so h_max =
+  // l_max / 1.13 = 0.4956 mm < h = 1.5 mm.
   const std::string text = replace(replace(kScene, "\"0.02 N/mm\"", "\"10 J/m2\""),
                                    "cell_size = \"0.5 mm\"", "cell_size = \"1.5 mm\"");
   expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy",
                      "cell too coarse for this material (snap-back)");
   expect_scene_error(text, "fracture_energy", "materials[0].fracture_energy",
-                     "the largest admissible cell size is 0.00112 m");
-  // At h = 1 mm the same material is fine.
-  const mpm::Problem<2> p =
-      fp::parse_scene(replace(text, "cell_size = \"1.5 mm\"", "cell_size = \"1 mm\""), "fine.toml");
+                     "the largest admissible cell size is 0.000495575 m");
+  // At h = 0.45 mm the same material is fine.
+  const mpm::Problem<2> p = fp::parse_scene(
+      replace(text, "cell_size = \"1.5 mm\"", "cell_size = \"0.45 mm\""), "fine.toml");
   EXPECT_TRUE(p.materials[0].damages());
 }
 
@@ -586,7 +587,7 @@ std::vector<BadFractureScene> bad_scenes() {
        replace(kScene, "[[materials]]", "[physics]\nthickness = 0\n\n[[materials]]"), "thickness",
        "physics.thickness", "positive out-of-plane thickness"},
       {"snap_back", replace(kScene, "\"0.5 mm\"", "\"3 mm\""), "fracture_energy",
-       "materials[0].fracture_energy", "the largest admissible cell size is 0.00224 m"},
+       "materials[0].fracture_energy", "the largest admissible cell size is 0.00099115 m"},
       {"unknown_contact_key", with_contact("[contact]\nfrictoin = 1"), "frictoin",
        "contact.frictoin", "unknown key (did you mean 'friction'?)"},
       {"unknown_partitioning", with_contact("[contact]\npartitioning = \"on\""), "partitioning",

@@ -140,12 +140,10 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
   if (m.has("characteristic_length")) {
     spec.characteristic_length = m.quantity("characteristic_length", QK::length);
     if (!(spec.characteristic_length > 0.0))
-      m.expected("characteristic_length", "a positive length l_ch (default: the particle size)");
+      m.expected("characteristic_length",
+                 "a positive length l_ch (default: 1.13 h for rankine, the cell diagonal for "
+                 "time-to-failure)");
   }
-  // l_ch of a lattice particle (volume s² per unit thickness), as the solver computes it.
-  const double band_width =
-      mpm::characteristic_length<2>(spec, particle_spacing * particle_spacing, grid.cell_size);
-
   const std::string degradation = m.optional_string("degradation").value_or("tensile");
   if (degradation == "tensile")
     spec.degradation = mpm::Degradation::tensile_spectral;
@@ -166,6 +164,10 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     if (!(r.fracture_energy > 0.0)) m.expected("fracture_energy", "a positive fracture energy G_f");
     r.youngs_modulus = youngs_modulus(spec);
     spec.damage = r;
+    // l_ch of a lattice particle (volume s² per unit thickness), as the solver computes it: known
+    // only once the law is set (before, the default for no damage law would be taken).
+    const double band_width =
+        mpm::characteristic_length<2>(spec, particle_spacing * particle_spacing, grid.cell_size);
     // With Weibull strengths the nominal strength checked is the median at the particles' volume;
     // stronger draws that snap back are capped at the snap-back limit by the damage update
     // (warned in assign_strengths).
