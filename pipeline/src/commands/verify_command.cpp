@@ -24,6 +24,10 @@ const std::vector<VerifyCase>& verify_cases() {
        "resolutions",
        verify_bar_tension},
       {"kalthoff", "P1 Kalthoff-Winkler plate: crack angle and crack speed", verify_kalthoff},
+      {"hertz",
+       "V5 Hertz line contact, cylinder on a rigid flat: contact half-width and pressure profile, "
+       "relaxed to equilibrium",
+       verify_hertz},
       {"conduction", "V4 one-dimensional heat conduction from a temperature step vs erfc",
        verify_conduction},
       {"contact-temperature",
@@ -62,6 +66,7 @@ int execute(const VerifyArguments& args) {
   VerifyOptions options;
   options.quick = args.quick;
   options.threads = args.threads;
+  options.output_directory = args.output;
   if (args.list) {
     for (const auto& c : verify_cases())
       std::printf("%-16s %s\n", c.name.c_str(), c.description.c_str());
