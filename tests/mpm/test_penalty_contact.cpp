@@ -100,8 +100,8 @@ TEST(PenaltyContact, BlockSettlesWithReactionEqualToItsWeight) {
   double lowest = 0.0;
   const auto& P = solver.particles();
   for (std::size_t p = 0; p < P.size(); ++p)
-    lowest = std::min(lowest, P.x[p].y() - 0.5 * (std::abs(P.domain[p](1, 0)) +
-                                                   std::abs(P.domain[p](1, 1))));
+    lowest = std::min(
+        lowest, P.x[p].y() - 0.5 * (std::abs(P.domain[p](1, 0)) + std::abs(P.domain[p](1, 1))));
   EXPECT_NEAR(-lowest, expected_penetration, 0.1 * expected_penetration);
 }
 

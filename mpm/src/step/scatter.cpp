@@ -1,9 +1,10 @@
 // P2G ([XLS21] eq. (47)-(49)): m_i = Σ S̄ m_p, p_i = Σ S̄ m_p v_p, f_i = Σ S̄ (m_p g + f_p) − Σ V_p
-// σ_p ∇S̄ (f_p: traction loads and penalty walls, [XLS21] eq. (87)), into the particle's field at each node as the field map says ([HH17] Alg. 2), with the
-// contact sums at the nodes that can hold two fields. APIC ([JSS15]) adds the momentum of the
-// particle's affine field at the node, m_p S̄_ip C_p (x_i − x_p): a rigid or affine motion then
-// reaches the grid exactly at every node, partly filled or not, since Σ S̄ (x_i − x_p) = 0 keeps
-// the total momentum and linear completeness gives m_i v_i = Σ S̄ m_p v(x_i).
+// σ_p ∇S̄ (f_p: traction loads and penalty walls, [XLS21] eq. (87)), into the particle's field at
+// each node as the field map says ([HH17] Alg. 2), with the contact sums at the nodes that can hold
+// two fields. APIC ([JSS15]) adds the momentum of the particle's affine field at the node, m_p S̄_ip
+// C_p (x_i − x_p): a rigid or affine motion then reaches the grid exactly at every node, partly
+// filled or not, since Σ S̄ (x_i − x_p) = 0 keeps the total momentum and linear completeness gives
+// m_i v_i = Σ S̄ m_p v(x_i).
 #include <algorithm>
 
 #include "step/particle_loops.hpp"

@@ -1,6 +1,7 @@
-// Body-fitted particles of the Hertz quarter cylinder (hertz_particles.hpp).
+// Body-fitted particles of the Hertz half cylinder (hertz_particles.hpp).
 #include "hertz_particles.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -19,12 +20,13 @@ constexpr double fitted_fraction = 0.5;
 
 }  // namespace
 
-CylinderParticles quarter_cylinder_particles(double radius, double spacing, double density) {
+CylinderParticles half_cylinder_particles(double radius, double spacing, double density) {
   const double columns_real = radius / spacing;
   const long long columns = std::llround(columns_real);
   if (columns < 1 || std::abs(columns_real - static_cast<double>(columns)) > 1e-9 * columns_real)
-    throw std::invalid_argument("quarter_cylinder_particles: the radius must be a whole number of "
-                                "particle spacings");
+    throw std::invalid_argument(
+        "half_cylinder_particles: the radius must be a whole number of "
+        "particle spacings");
   CylinderParticles out;
   out.column_width = spacing;
   mpm::Particles<2>& P = out.particles;
@@ -40,10 +42,10 @@ CylinderParticles quarter_cylinder_particles(double radius, double spacing, doub
     P.strength[p] = std::numeric_limits<double>::infinity();
     return static_cast<std::int64_t>(p);
   };
-  for (long long i = 0; i < columns; ++i) {
+  for (long long i = -columns; i < columns; ++i) {
     const double left = static_cast<double>(i) * spacing, right = left + spacing;
     const double centre = left + 0.5 * spacing;
-    if (right <= fitted_fraction * radius) {
+    if (std::max(std::abs(left), std::abs(right)) <= fitted_fraction * radius) {
       // Chord-fitted column: the bottom edge runs from (left, y(left)) to (right, y(right)).
       const double y_left = arc_height(radius, left), y_right = arc_height(radius, right);
       const double rise = y_right - y_left;

@@ -19,7 +19,7 @@ void write_hertz_profile(const std::string& directory, const std::vector<HertzLe
   csv.precision(10);
   analysis::PlotSpec spec;
   spec.title = "Hertz line contact: contact pressure on the flat";
-  spec.x_label = "distance from the centre of contact x [mm]";
+  spec.x_label = "position on the flat x [mm]";
   spec.y_label = "contact pressure p [MPa]";
   double reach = 1.25 * oracle.half_width();
   for (std::size_t k = 0; k < levels.size(); ++k) {
@@ -33,7 +33,7 @@ void write_hertz_profile(const std::string& directory, const std::vector<HertzLe
           << point.analytic << '\n';
       nodes.x.push_back(point.x * 1e3);
       nodes.y.push_back(point.pressure * 1e-6);
-      reach = std::max(reach, point.x);
+      reach = std::max(reach, std::abs(point.x));
     }
     spec.series.push_back(std::move(nodes));
   }
@@ -41,7 +41,7 @@ void write_hertz_profile(const std::string& directory, const std::vector<HertzLe
   analytic.label = "Hertz, [XLS21] eq. (89)";
   constexpr int samples = 400;
   for (int j = 0; j <= samples; ++j) {
-    const double x = reach * j / samples;
+    const double x = reach * (2.0 * j / samples - 1.0);
     analytic.x.push_back(x * 1e3);
     analytic.y.push_back(oracle.pressure(x) * 1e-6);
   }

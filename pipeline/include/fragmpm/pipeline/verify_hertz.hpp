@@ -24,8 +24,8 @@ namespace fragmpm::pipeline {
 /// would give a contact √2 wider.) For R = 4 mm, E = 10 GPa, ν = 0, F = 156.7 N/mm:
 /// b = 0.2825 mm, p_max = 353.1 MPa.
 struct HertzOracle {
-  double load = 156.7e3;  ///< F [N/m]
-  double radius = 4e-3;   ///< R [m]
+  double load = 156.7e3;         ///< F [N/m]
+  double radius = 4e-3;          ///< R [m]
   double youngs_modulus = 10e9;  ///< E [Pa]
   double poisson_ratio = 0.0;    ///< ν
 
@@ -49,7 +49,7 @@ struct HertzOracle {
 
 /// The contact pressure at one grid node of the flat.
 struct HertzProfilePoint {
-  double x = 0.0;         ///< distance from the centre of contact [m]
+  double x = 0.0;         ///< position along the flat, 0 at the centre of contact [m]
   double pressure = 0.0;  ///< simulated [Pa]
   double analytic = 0.0;  ///< [XLS21] eq. (89) [Pa]
 };
@@ -61,14 +61,13 @@ struct HertzLevel {
   double dt = 0.0, wall_seconds = 0.0;  ///< largest step [s], run time [s]
   double relaxed_time = 0.0;            ///< simulated time when the convergence test held [s]
   bool converged = false;
-  /// Wall reaction of the whole cylinder (twice the quarter model's) [N/m], and its residual
-  /// |reaction − F| / F when the run stopped.
+  /// Wall reaction [N/m] and its residual |reaction − F| / F when the run stopped.
   double reaction = 0.0, residual = 0.0;
-  double kinetic_ratio = 0.0;  ///< kinetic / strain energy when the run stopped
-  double half_width = 0.0;     ///< b from the second moment of the contact force [m]
-  double peak_pressure = 0.0;  ///< largest nodal pressure [Pa]
-  double rms_error = 0.0;      ///< RMS nodal pressure error over the contact / p_max
-  std::vector<HertzProfilePoint> profile;  ///< nodes x = 0, h, 2h, … while any is loaded
+  double kinetic_ratio = 0.0;              ///< kinetic / strain energy when the run stopped
+  double half_width = 0.0;                 ///< b from the second moment of the contact force [m]
+  double peak_pressure = 0.0;              ///< largest nodal pressure [Pa]
+  double rms_error = 0.0;                  ///< RMS nodal pressure error over the contact / p_max
+  std::vector<HertzProfilePoint> profile;  ///< nodes x = i h across the contact and one beyond
 };
 
 /// The closed form for the embedded scene `verify/hertz.toml` (E and ν of its material).
