@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "fragmpm/mpm/penalty_contact.hpp"
 #include "fragmpm/mpm/solver.hpp"
@@ -61,6 +62,7 @@ particles_per_cell = 2
 [time]
 cfl = 0.4
 damping = "2e5 1/s"
+pic_fraction = 1.0
 [physics]
 gravity = ["0 m/s2", "-1e5 m/s2"]
 [[materials]]
@@ -80,6 +82,8 @@ point = ["0 mm", "0 mm"]
 normal = [0, 1]
 kind = "penalty"
 stiffness = "1 GPa/mm"
+[stop]
+max_steps = 10000
 )";
 
 }  // namespace
@@ -106,12 +110,23 @@ TEST(PenaltyContact, BlockSettlesWithReactionEqualToItsWeight) {
 }
 
 TEST(PenaltyContact, SceneKeys) {
-  std::string text = block_on_penalty_wall;
+  const auto refused_at = [](const std::string& text, const std::string& key) {
+    try {
+      pipeline::parse_scene(text, "penalty-block.toml");
+      ADD_FAILURE() << "accepted a scene that should fail at '" << key << "'";
+    } catch (const pipeline::SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  const std::string text = block_on_penalty_wall;
   const std::string stiffness = "stiffness = \"1 GPa/mm\"\n";
   std::string without = text;
   without.erase(without.find(stiffness), stiffness.size());
-  EXPECT_THROW(pipeline::parse_scene(without, "penalty-block.toml"), pipeline::SceneError);
+  refused_at(without, "stiffness");  // a penalty wall needs κ_n
   std::string roller = text;
   roller.replace(roller.find("\"penalty\""), 9, "\"roller\"");
-  EXPECT_THROW(pipeline::parse_scene(roller, "penalty-block.toml"), pipeline::SceneError);
+  refused_at(roller, "stiffness");  // only penalty walls have one
+  std::string wrong_unit = text;
+  wrong_unit.replace(wrong_unit.find("\"1 GPa/mm\""), 10, "\"1 GPa\"");
+  refused_at(wrong_unit, "stiffness");  // a pressure is not a pressure per length
 }
