@@ -288,7 +288,7 @@ mpm::WallSpec<2> read_wall(const Section& w) {
   else
     w.expected("kind", "one of \"contact\", \"roller\", \"fixed\", \"penalty\", \"thermal\"");
   if (wall.kind == mpm::WallKind::penalty) {
-    wall.penalty_stiffness = w.quantity("stiffness", QK::contact_stiffness);
+    wall.penalty_stiffness = w.quantity("stiffness", QK::stiffness);
     if (!(wall.penalty_stiffness > 0.0 && std::isfinite(wall.penalty_stiffness)))
       w.expected("stiffness",
                  "a positive penalty stiffness kappa_n ([XLS21] eq. (83)), e.g. \"100 GPa/mm\"");

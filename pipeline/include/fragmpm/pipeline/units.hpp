@@ -16,26 +16,26 @@ namespace fragmpm::pipeline {
 
 /// What a scene value measures; decides which units are accepted and the SI unit of the result.
 enum class QuantityKind {
-  length,             ///< m
-  time,               ///< s
-  mass,               ///< kg
-  density,            ///< kg/m3
-  pressure,           ///< Pa (stress, elastic modulus)
-  velocity,           ///< m/s
-  acceleration,       ///< m/s2
-  frequency,          ///< Hz
-  angle,              ///< rad
-  angular_velocity,   ///< rad/s
-  temperature,        ///< K
-  energy_per_area,    ///< J/m2 (fracture energy)
-  specific_heat,      ///< J/(kg K)
-  conductivity,       ///< W/(m K)
-  expansion,          ///< 1/K
-  volume,             ///< m3 (Weibull reference volume)
-  inverse_velocity,   ///< s/m (slope of velocity-dependent friction)
-  heat_flux,          ///< W/m2 (thermal boundary flux)
-  film_coefficient,   ///< W/(m2 K) (convection, contact conductance)
-  contact_stiffness,  ///< Pa/m (penalty stiffness of a wall, [XLS21] eq. (83))
+  length,            ///< m
+  time,              ///< s
+  mass,              ///< kg
+  density,           ///< kg/m3
+  pressure,          ///< Pa (stress, elastic modulus)
+  velocity,          ///< m/s
+  acceleration,      ///< m/s2
+  frequency,         ///< Hz
+  angle,             ///< rad
+  angular_velocity,  ///< rad/s
+  temperature,       ///< K
+  energy_per_area,   ///< J/m2 (fracture energy)
+  specific_heat,     ///< J/(kg K)
+  conductivity,      ///< W/(m K)
+  expansion,         ///< 1/K
+  volume,            ///< m3 (Weibull reference volume)
+  inverse_velocity,  ///< s/m (slope of velocity-dependent friction)
+  heat_flux,         ///< W/m2 (thermal boundary flux)
+  film_coefficient,  ///< W/(m2 K) (convection, contact conductance)
+  stiffness,         ///< Pa/m (penalty stiffness of a wall, [XLS21] eq. (83))
 };
 
 /// The quantity string could not be read or has the wrong kind of unit. The message says what was
