@@ -2,9 +2,10 @@
 // the plane gets the force κ_n A_p n, A_p the part of its domain behind the plane
 // (fragmpm/mpm/penalty_contact.hpp), scattered to the grid with the particle's weights like a
 // traction load. The forces are those of the particle state at the start of the step (explicit),
-// so κ_n must stay below the stiffness the CFL step can carry: a node of mass ρh² on a spring
-// κ_n h is stable for ω Δt < 2, i.e. κ_n ≲ 25 E / h at the default Courant number; κ_n = 10 E / h
-// keeps a margin. The wall reaction is −Σ_p κ_n A_p n, and the work of the forces on the particles
+// so κ_n must stay below the stiffness the CFL step can carry. Estimate (not measured): a node of
+// mass ρh² on a spring κ_n h alone is stable for ω Δt < 2, κ_n < 50 E / h at the default Courant
+// number 0.4 (Δt = 0.28 h / c); with the material's own stiffness at the same node about half of
+// that. κ_n = 10 E / h (the Hertz case, verify_hertz.cpp) keeps a margin. The wall reaction is −Σ_p κ_n A_p n, and the work of the forces on the particles
 // is booked as wall work (g2p.cpp), so the energy stored in the penalty "spring" is in wall_work.
 #include "fragmpm/mpm/penalty_contact.hpp"
 #include "step/stages.hpp"
