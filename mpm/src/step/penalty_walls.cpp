@@ -5,8 +5,9 @@
 // so κ_n must stay below the stiffness the CFL step can carry. Estimate (not measured): a node of
 // mass ρh² on a spring κ_n h alone is stable for ω Δt < 2, κ_n < 50 E / h at the default Courant
 // number 0.4 (Δt = 0.28 h / c); with the material's own stiffness at the same node about half of
-// that. κ_n = 10 E / h (the Hertz case, verify_hertz.cpp) keeps a margin. The wall reaction is −Σ_p κ_n A_p n, and the work of the forces on the particles
-// is booked as wall work (g2p.cpp), so the energy stored in the penalty "spring" is in wall_work.
+// that. κ_n = 10 E / h (the Hertz case, verify_hertz.cpp) keeps a margin. The wall reaction is −Σ_p
+// κ_n A_p n, and the work of the forces on the particles is booked as wall work (g2p.cpp), so the
+// energy stored in the penalty "spring" is in wall_work.
 #include "fragmpm/mpm/penalty_contact.hpp"
 #include "step/stages.hpp"
 
