@@ -58,11 +58,11 @@ TEST(VerifyHertz, CoarseLevelRelaxesToTheHertzContact) {
   const HertzLevel level = run_hertz_level(0.2e-3);
   EXPECT_TRUE(level.converged);
   EXPECT_NEAR(level.reaction, oracle.load, 1e-3 * oracle.load);
-  // Measured at h = 0.2 mm (b / h = 1.4, three loaded nodes): b 13.4 % short, RMS error 7.4 % of
-  // p_max (docs/verification.md).
-  EXPECT_NEAR(level.half_width, oracle.half_width(), 0.16 * oracle.half_width());
+  // Measured at h = 0.2 mm (b / h = 1.4, three loaded nodes): b 1.8 % short, RMS error 7.6 % of
+  // p_max, peak nodal pressure 4.7 % low (docs/verification.md).
+  EXPECT_NEAR(level.half_width, oracle.half_width(), 0.04 * oracle.half_width());
   EXPECT_LT(level.rms_error, 0.10);
-  EXPECT_NEAR(level.peak_pressure, oracle.peak_pressure(), 0.05 * oracle.peak_pressure());
+  EXPECT_NEAR(level.peak_pressure, oracle.peak_pressure(), 0.08 * oracle.peak_pressure());
   ASSERT_FALSE(level.profile.empty());
   EXPECT_NEAR(level.profile.front().x, -level.profile.back().x, 1e-12);
 }

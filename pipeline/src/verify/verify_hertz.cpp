@@ -5,18 +5,22 @@
 // the closed form of HertzOracle (verify_hertz.hpp, where eq. (88)-(89) is derived).
 //
 // Dynamic relaxation. The traction ramps up over the scene's ramp time; mass-proportional damping
-// ([time] damping = α, step/grid_update.cpp) takes the motion out. α = 1e6 1/s is about twice the
-// lowest frequency of the loaded cylinder (the whole disk bouncing on its contact: the reaction
-// rings with a period of 13 µs, ω₁ ≈ 4.7e5 rad/s, when α = 2e5 1/s), so that mode is near critical
-// damping and every faster one decays at α/2. The scene runs PIC (pic_fraction = 1): FLIP keeps
-// particle velocities that map to no grid momentum, which grid damping cannot reach (with FLIP the
-// kinetic energy stalled at 1e-5 to 1e-3 of the strain energy, in a checkerboard of particle
-// velocities near the contact); the static state does not depend on the transfer. Convergence test
-// (after the ramp), checked every step: the wall reaction equals the applied load to within 1e-3 of
-// F *and* the kinetic energy is below 1e-6 of the strain energy. The two together exclude the
-// turning point of an oscillation (kinetic energy momentarily zero, reaction off) and its
-// equilibrium crossing (reaction right, kinetic energy largest). A run that reaches the scene's end
-// time without passing is reported as not converged.
+// ([time] damping = α, step/grid_update.cpp) takes the motion out. The loaded cylinder has two slow
+// motions: the disk ringing on its contact (the reaction rings with a period of 13 µs,
+// ω ≈ 4.7e5 rad/s, at α = 2e5 1/s) and a slower, overdamped redistribution of the contact pressure
+// at nearly constant total force (time constant 20-40 µs at α = 1e6 1/s, during which b moved by
+// 13 % at h = 0.2 mm). α = 4e5 1/s damps the first at ζ ≈ 0.4 and lets the second relax at about
+// twice the rate it has at 1e6 1/s (an overdamped mode relaxes at ω²/α). The scene runs PIC
+// (pic_fraction = 1): FLIP keeps particle velocities that map to no grid momentum, which grid
+// damping cannot reach (with FLIP the kinetic energy stalled at 1e-5 to 1e-3 of the strain energy,
+// in a checkerboard of particle velocities near the contact); the static state does not depend on
+// the transfer. Convergence test (after the ramp), checked every step: the wall reaction equals
+// the applied load to within 1e-5 of F *and* the kinetic energy is below 1e-10 of the strain
+// energy. The two together exclude the turning point of an oscillation (kinetic energy momentarily
+// zero, reaction off) and its equilibrium crossing (reaction right, kinetic energy largest). A
+// looser test (1e-3 and 1e-6) passed after 30 µs, while the redistribution was still under way,
+// and reported a b 13 % short at h = 0.2 mm that the relaxed state does not have. A run that
+// reaches the scene's end time without passing is reported as not converged.
 //
 // Readout. Penalty forces f_p = κ_n A_p (penalty_contact.hpp) of the relaxed state are collected
 // at the nodes of the flat, F_i = Σ_p N_i(x_p) f_p with N_i the linear hat of node x_i = i h, and
@@ -52,8 +56,8 @@ namespace {
 constexpr const char* scene_name = "verify/hertz.toml";
 constexpr const char* scene_path = "scenes/verify/hertz.toml";
 constexpr double penalty_cells = 10.0;       // κ_n = 10 E / h (penalty_walls.cpp: stable to ~25)
-constexpr double reaction_tolerance = 1e-3;  // |reaction − F| / F
-constexpr double kinetic_tolerance = 1e-6;   // kinetic / strain energy
+constexpr double reaction_tolerance = 1e-5;  // |reaction − F| / F
+constexpr double kinetic_tolerance = 1e-10;  // kinetic / strain energy
 constexpr double finest_half_width_target = 0.05;  // docs/verification.md
 constexpr double finest_rms_target = 0.10;
 constexpr double finest_cell = 0.05e-3;  // [m]: the level the targets apply to
