@@ -67,6 +67,7 @@ struct Solver<D>::Impl {
     for (double m : problem.particles.mass) lightest = std::min(lightest, m);
     s.negligible_mass = std::isfinite(lightest) ? negligible_node_mass_fraction * lightest : 0.0;
     if (!problem.loads.empty()) s.load_force.assign(problem.particles.size(), Vec<D>::Zero());
+    for (const auto& w : problem.walls) s.penalty_walls |= w.kind == WallKind::penalty;
     if (problem.thermal.active()) start_thermal();
     compute_initial_state();
   }
@@ -169,6 +170,7 @@ struct Solver<D>::Impl {
     size_grid(s);
     bin_particles_into_strips(s);
     if (!s.load_force.empty()) update_load_forces(s);
+    if (s.penalty_walls) apply_penalty_walls(s);
     std::optional<NumericalFailure> failure;
     switch (s.problem.grid.shape_function) {
       case ShapeFunctionKind::linear:

@@ -62,16 +62,17 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   constexpr bool deform_domain = Kind == ShapeFunctionKind::cpdi;
   const Vec<D> gravity = state.problem.gravity;
   const bool loaded = !state.load_force.empty();
+  const bool penalty = state.penalty_walls;
   const double cell_size = state.grid.cell_size;
   double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0,
-         max_speed = 0.0;
+         penalty_work = 0.0, max_speed = 0.0;
   std::int64_t failed = -1;
   const int slots = omp_get_max_threads();
   constexpr int A = Axial<D>::RowsAtCompileTime;
   constexpr std::size_t per_thread = D + A;
   size_array(state.momentum_parts, per_thread * static_cast<std::size_t>(slots));
   std::fill(state.momentum_parts.begin(), state.momentum_parts.end(), 0.0);
-#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated) reduction(max : max_speed)
+#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated, penalty_work) reduction(max : max_speed)
   {
     Stencil<D> s;
     Vec<D> momentum = Vec<D>::Zero();
@@ -125,6 +126,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
       }
       gravity_work += P.mass[p] * gravity.dot(displacement);
       if (loaded) load_work += state.load_force[p].dot(displacement);
+      if (penalty) penalty_work += state.penalty_force[p].dot(displacement);
       momentum += P.mass[p] * P.v[p];
       const double density = P.mass[p] / (P.volume0[p] * J);
       max_speed =
@@ -148,6 +150,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   state.row.strain = strain;
   state.totals.gravity_work += gravity_work;
   state.totals.load_work += load_work;
+  state.totals.wall_work += penalty_work;  // penalty walls (penalty_walls.cpp)
   state.totals.dissipated += dissipated;
   state.next_dt_limit =
       max_speed > 0.0 ? state.problem.time.cfl * cell_size / (std::sqrt(double(D)) * max_speed)

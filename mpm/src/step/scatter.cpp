@@ -1,9 +1,10 @@
 // P2G ([XLS21] eq. (47)-(49)): m_i = Σ S̄ m_p, p_i = Σ S̄ m_p v_p, f_i = Σ S̄ (m_p g + f_p) − Σ V_p
-// σ_p ∇S̄, into the particle's field at each node as the field map says ([HH17] Alg. 2), with the
-// contact sums at the nodes that can hold two fields. APIC ([JSS15]) adds the momentum of the
-// particle's affine field at the node, m_p S̄_ip C_p (x_i − x_p): a rigid or affine motion then
-// reaches the grid exactly at every node, partly filled or not, since Σ S̄ (x_i − x_p) = 0 keeps
-// the total momentum and linear completeness gives m_i v_i = Σ S̄ m_p v(x_i).
+// σ_p ∇S̄ (f_p: traction loads and penalty walls, [XLS21] eq. (87)), into the particle's field at
+// each node as the field map says ([HH17] Alg. 2), with the contact sums at the nodes that can hold
+// two fields. APIC ([JSS15]) adds the momentum of the particle's affine field at the node, m_p S̄_ip
+// C_p (x_i − x_p): a rigid or affine motion then reaches the grid exactly at every node, partly
+// filled or not, since Σ S̄ (x_i − x_p) = 0 keeps the total momentum and linear completeness gives
+// m_i v_i = Σ S̄ m_p v(x_i).
 #include <algorithm>
 
 #include "step/particle_loops.hpp"
@@ -19,6 +20,7 @@ void scatter_to_grid(StepState<D>& state) {
   const PartitionState<D>& part = state.partition;
   const Vec<D> gravity = state.problem.gravity;
   const bool loaded = !state.load_force.empty();
+  const bool penalty = state.penalty_walls;
   const bool by_bodies = state.plan.by_bodies;
   const bool gap_test = state.plan.gap_test;
   const bool area_needed = state.plan.needs_contact_area;
@@ -26,7 +28,8 @@ void scatter_to_grid(StepState<D>& state) {
     const double volume = P.volume0[p] * P.F[p].determinant();
     const Mat<D> volume_stress = volume * P.stress[p];
     const Vec<D> momentum = P.mass[p] * P.v[p];
-    const Vec<D> external = P.mass[p] * gravity + (loaded ? state.load_force[p] : Vec<D>::Zero());
+    const Vec<D> external = P.mass[p] * gravity + (loaded ? state.load_force[p] : Vec<D>::Zero()) +
+                            (penalty ? state.penalty_force[p] : Vec<D>::Zero());
     for (int e = 0; e < s.count; ++e) {
       const std::size_t i = static_cast<std::size_t>(s.node[e]);
       const int f = field_at<D, Partitioned>(state, p, e);

@@ -24,6 +24,11 @@ void bin_particles_into_strips(StepState<D>& state);
 template <int D>
 void update_load_forces(StepState<D>& state);
 
+/// Particle forces of the penalty walls ([XLS21] eq. (83), (86)-(87)) into penalty_force, and
+/// their reactions into the series row. (penalty_walls.cpp)
+template <int D>
+void apply_penalty_walls(StepState<D>& state);
+
 /// d̂_p and the kernel damage field with its gradient ([HH17] eq. (17)-(19)); sets
 /// partition.this_step. (damage_field_stage.cpp)
 template <int D>

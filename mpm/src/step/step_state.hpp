@@ -124,6 +124,10 @@ struct StepState {
   ContactSums<D> contact;
   WallScratch<D> wall_scratch;
   std::vector<Vec<D>> load_force;  ///< f_p of this step [N per unit thickness in 2D]
+  /// Penalty-wall force on each particle this step; empty unless the scene has a penalty wall.
+  std::vector<Vec<D>> penalty_force;
+  std::vector<double> penalty_measure;  ///< scratch: A_p of the penalty wall being applied
+  bool penalty_walls = false;           ///< some wall is a penalty wall
   /// Per-thread sums of G2P: momentum (D) and angular momentum (1 in 2D, 3 in 3D) per thread.
   std::vector<double> momentum_parts;
   /// ψ_t per particle from the last constitutive update (thermal and damage only): the damage

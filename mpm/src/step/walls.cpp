@@ -24,6 +24,8 @@ Vec<D> wall_change(const StepState<D>& state, const WallSpec<D>& wall, const Vec
       return -relative;
     case WallKind::roller:
       return -relative.dot(wall.normal) * wall.normal;
+    case WallKind::penalty:  // acts through particle forces (penalty_walls.cpp)
+      return Vec<D>::Zero();
     case WallKind::contact:
       break;
   }
@@ -59,6 +61,7 @@ void apply_walls(StepState<D>& state, double dt) {
   }
   for (std::size_t w = 0; w < state.problem.walls.size(); ++w) {
     const WallSpec<D>& wall = state.problem.walls[w];
+    if (wall.kind == WallKind::penalty) continue;  // particle forces, penalty_walls.cpp
     const Vec<D> wall_velocity = wall.velocity.velocity(state.time + dt);
     const Vec<D> wall_shift = wall.velocity.displacement(state.time + dt);
     // A bilateral wall (fixed, roller) holds the nodes it touches: when it moves away from the

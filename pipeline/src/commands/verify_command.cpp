@@ -28,6 +28,10 @@ const std::vector<VerifyCase>& verify_cases() {
        "P5 dynamic Brazilian disk: fragment count, mean size and speed at two resolutions, three "
        "Weibull seeds, partitioned vs single field",
        verify_brazilian},
+      {"hertz",
+       "V5 Hertz line contact, cylinder on a rigid flat: contact half-width and pressure profile, "
+       "relaxed to equilibrium",
+       verify_hertz},
       {"conduction", "V4 one-dimensional heat conduction from a temperature step vs erfc",
        verify_conduction},
       {"contact-temperature",

@@ -98,7 +98,7 @@ int read_grid(const Section& g, mpm::GridSpec<2>& grid) {
 }
 
 void read_time(const Section& t, mpm::TimeSpec& time) {
-  t.allow_only({"cfl", "dt", "transfer", "pic_fraction", "thermal_pic_fraction"});
+  t.allow_only({"cfl", "dt", "transfer", "pic_fraction", "thermal_pic_fraction", "damping"});
   time.cfl = t.optional_number("cfl").value_or(0.4);
   if (!(time.cfl > 0.0 && time.cfl <= 1.0)) t.expected("cfl", "a Courant number 0 < cfl <= 1");
   if (auto dt = t.optional_quantity("dt", QK::time)) {
@@ -122,6 +122,9 @@ void read_time(const Section& t, mpm::TimeSpec& time) {
   if (!(time.thermal_pic_fraction >= 0.0 && time.thermal_pic_fraction <= 1.0))
     t.expected("thermal_pic_fraction",
                "a PIC fraction 0 <= thermal_pic_fraction <= 1 (0 = [XLS21] eq. (62))");
+  time.damping = t.optional_quantity("damping", QK::frequency).value_or(0.0);
+  if (!(time.damping >= 0.0 && std::isfinite(time.damping)))
+    t.expected("damping", "a mass-proportional damping coefficient >= 0 (e.g. \"1e6 1/s\")");
 }
 
 mpm::MaterialSpec read_material(const Section& m, std::optional<double> thickness,
@@ -262,7 +265,8 @@ mpm::VelocityHistory<2> read_history(const Section& h) {
 }
 
 mpm::WallSpec<2> read_wall(const Section& w) {
-  w.allow_only({"name", "point", "normal", "kind", "friction", "velocity", "thermal", "region"});
+  w.allow_only({"name", "point", "normal", "kind", "friction", "velocity", "thermal", "region",
+                "stiffness"});
   mpm::WallSpec<2> wall;
   wall.name = w.name("name");
   wall.point = w.vector("point", QK::length);
@@ -277,10 +281,21 @@ mpm::WallSpec<2> read_wall(const Section& w) {
     wall.kind = mpm::WallKind::roller;
   else if (kind == "fixed")
     wall.kind = mpm::WallKind::fixed;
+  else if (kind == "penalty")
+    wall.kind = mpm::WallKind::penalty;
   else if (kind == "thermal")
     wall.kind = mpm::WallKind::contact;  // a plane for a thermal condition only (parse_scene)
   else
-    w.expected("kind", "one of \"contact\", \"roller\", \"fixed\", \"thermal\"");
+    w.expected("kind", "one of \"contact\", \"roller\", \"fixed\", \"penalty\", \"thermal\"");
+  if (wall.kind == mpm::WallKind::penalty) {
+    wall.penalty_stiffness = w.quantity("stiffness", QK::stiffness);
+    if (!(wall.penalty_stiffness > 0.0 && std::isfinite(wall.penalty_stiffness)))
+      w.expected("stiffness",
+                 "a positive penalty stiffness kappa_n ([XLS21] eq. (83)), e.g. \"100 GPa/mm\"");
+  } else if (w.has("stiffness")) {
+    w.fail("stiffness", "expected no stiffness for kind = \"" + kind +
+                            "\" (the penalty stiffness belongs to kind = \"penalty\")");
+  }
   if (w.has("friction")) {
     if (wall.kind != mpm::WallKind::contact)
       w.fail("friction", "expected no friction for kind = \"" + kind +

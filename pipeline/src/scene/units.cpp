@@ -126,11 +126,13 @@ Dims kind_dims(QuantityKind k) {
       return dims(0, 1, -3);
     case QuantityKind::film_coefficient:
       return dims(0, 1, -3, -1);
+    case QuantityKind::stiffness:
+      return dims(-2, 1, -2);
   }
   return {};
 }
 
-constexpr std::array<QuantityKind, 19> kAllKinds = {QuantityKind::length,
+constexpr std::array<QuantityKind, 20> kAllKinds = {QuantityKind::length,
                                                     QuantityKind::time,
                                                     QuantityKind::mass,
                                                     QuantityKind::density,
@@ -148,7 +150,8 @@ constexpr std::array<QuantityKind, 19> kAllKinds = {QuantityKind::length,
                                                     QuantityKind::volume,
                                                     QuantityKind::inverse_velocity,
                                                     QuantityKind::heat_flux,
-                                                    QuantityKind::film_coefficient};
+                                                    QuantityKind::film_coefficient,
+                                                    QuantityKind::stiffness};
 
 /// "a length" / "kg m^-1 s^-2" — how a found unit is described in an error.
 std::string describe_dims(const Dims& d) {
@@ -212,6 +215,8 @@ std::string_view example(QuantityKind kind) {
       return "1 MW/m2";
     case QuantityKind::film_coefficient:
       return "10 W/(m2 K)";
+    case QuantityKind::stiffness:
+      return "100 GPa/mm";
   }
   return "";
 }
@@ -422,6 +427,8 @@ std::string_view kind_name(QuantityKind kind) {
       return "heat flux";
     case QuantityKind::film_coefficient:
       return "heat transfer coefficient";
+    case QuantityKind::stiffness:
+      return "contact stiffness";
   }
   return "quantity";
 }
@@ -466,6 +473,8 @@ std::string_view si_unit(QuantityKind kind) {
       return "W/m2";
     case QuantityKind::film_coefficient:
       return "W/(m2 K)";
+    case QuantityKind::stiffness:
+      return "Pa/m";
   }
   return "";
 }

@@ -68,8 +68,10 @@ inline double characteristic_length(const MaterialSpec& material, double referen
 }
 
 /// contact: one-sided, frictional (Coulomb μ = friction); roller: bilateral normal constraint, free
-/// tangentially; fixed: the material moves with the wall.
-enum class WallKind { contact, roller, fixed };
+/// tangentially; fixed: the material moves with the wall; penalty: one-sided and frictionless, a
+/// particle force κ_n × (the part of the particle's domain behind the plane) ([XLS21] eq. (83),
+/// (86)-(87); fragmpm/mpm/penalty_contact.hpp), which sees gaps smaller than a cell.
+enum class WallKind { contact, roller, fixed, penalty };
 
 /// A rigid plane through `point` (at t = 0) with unit `normal` pointing into the material side.
 template <int D>
@@ -81,6 +83,8 @@ struct WallSpec {
   FrictionLaw friction = CoulombFriction{};  ///< contact walls only
   VelocityHistory<D> velocity;
   WallRegion<D> region;  ///< nodes the wall acts on
+  /// Penalty walls only: κ_n of [XLS21] eq. (83), contact pressure per penetration depth [Pa/m].
+  double penalty_stiffness = 0.0;
 };
 
 /// A surface traction on part of a body's boundary, applied as particle forces f_p = t(τ) a_p with
@@ -180,6 +184,12 @@ struct TimeSpec {
   /// further (7.8 K past the hottest initial temperature at a conductivity contrast of 10⁴); the
   /// PIC part is a convex combination of nodal temperatures and conserves the heat content exactly.
   double thermal_pic_fraction = 0.0;
+  /// α of a mass-proportional damping force −α m v on the grid [1/s]; 0 = off (the default). For
+  /// dynamic relaxation to a static state: each grid velocity update becomes
+  /// v_i ← (v_i + Δt f_i/m_i) / (1 + α Δt) (step/grid_update.cpp), so a free rigid motion decays as
+  /// (1 + αΔt)^(−n) → exp(−α t). The static solution does not depend on α. The energy it removes is
+  /// not booked: with damping on, balance_error includes it.
+  double damping = 0.0;
 };
 
 struct StopSpec {

@@ -35,6 +35,7 @@ enum class QuantityKind {
   inverse_velocity,  ///< s/m (slope of velocity-dependent friction)
   heat_flux,         ///< W/m2 (thermal boundary flux)
   film_coefficient,  ///< W/(m2 K) (convection, contact conductance)
+  stiffness,         ///< Pa/m (penalty stiffness of a wall, [XLS21] eq. (83))
 };
 
 /// The quantity string could not be read or has the wrong kind of unit. The message says what was

@@ -36,7 +36,9 @@ struct VerifyRow {
 struct VerifyOptions {
   bool quick = false;  ///< fewer, coarser levels (CI)
   int threads = 0;
-  std::string output_directory;  ///< where cases write their own figures (empty: none)
+  /// Where cases that write more than CASE.csv (the Hertz pressure profile, the Brazilian CDFs)
+  /// put their files.
+  std::string output_directory = "verify-out";
 };
 
 struct VerifyCase {
@@ -83,6 +85,11 @@ std::vector<VerifyRow> verify_conduction(const VerifyOptions& options);
 /// V3: steady contact-face temperatures across a pressed interface with pressure-dependent
 /// conductance, κ̄ = 0.1, 1, 10 ([XLS21] §4.2, eq. (90)); metrics in K (absolute errors).
 std::vector<VerifyRow> verify_contact_temperature(const VerifyOptions& options);
+
+/// V5: Hertz line contact of an elastic cylinder on a rigid flat ([XLS21] §4.1, eq. (88)-(89)):
+/// contact half-width and RMS pressure error at h = 0.2, 0.1, 0.05 mm (`quick`: the first two),
+/// relaxed to equilibrium; also writes DIR/hertz-profile.csv and .png (verify_hertz.hpp).
+std::vector<VerifyRow> verify_hertz(const VerifyOptions& options);
 
 /// V7: oscillating-block frictional heating over CFL factors, first- and second-order heating
 /// ([NBS18] §3, Fig. 6-7): friction work of one stick–slide–stick interval against its C → 0 limit.
