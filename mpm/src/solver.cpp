@@ -45,6 +45,9 @@ struct Solver<D>::Impl {
     for (const auto& m : problem.materials) {
       s.models.push_back({m.bulk_modulus, m.shear_modulus});
       s.material_damages.push_back(m.damages() ? 1 : 0);
+      const auto* rankine = std::get_if<RankineSoftening>(&m.damage);
+      s.material_nonlocal.push_back(rankine && rankine->nonlocal ? 1 : 0);
+      s.nonlocal_damage = s.nonlocal_damage || s.material_nonlocal.back();
       if (m.damages()) s.plan.damage = true;
       s.departure_speed_limit = std::max(
           s.departure_speed_limit, departure_speed_factor * s.models.back().wave_speed(m.density));

@@ -120,6 +120,21 @@ TEST(SceneFracture, RankineMaterialInSIUnitsAndUniformStrength) {
   for (double s : p.particles.strength) EXPECT_EQ(s, 50e6);
 }
 
+TEST(SceneFracture, NonlocalRankineBandIsWiderThanLocal) {
+  const std::string fine = replace(kScene, "\"0.5 mm\"", "\"0.2 mm\"");
+  const mpm::Problem<2> local = fp::parse_scene(fine, "local.toml");
+  const mpm::Problem<2> nonlocal = fp::parse_scene(
+      replace(fine, "damage = \"rankine\"", "damage = \"rankine\"\naveraging = \"nonlocal\""),
+      "nonlocal.toml");
+  EXPECT_FALSE(std::get<mpm::RankineSoftening>(local.materials[0].damage).nonlocal);
+  ASSERT_TRUE(std::get<mpm::RankineSoftening>(nonlocal.materials[0].damage).nonlocal);
+  const double volume = local.particles.volume0[0];
+  EXPECT_NEAR(mpm::characteristic_length<2>(local.materials[0], volume, 0.2e-3), 1.13 * 0.2e-3,
+              1e-15);
+  EXPECT_NEAR(mpm::characteristic_length<2>(nonlocal.materials[0], volume, 0.2e-3), 4.1 * 0.2e-3,
+              1e-15);
+}
+
 TEST(SceneFracture, TimeToFailureIsotropicAndNoDamage) {
   const std::string text = with_material_keys(
       "damage = \"time-to-failure\"\nstrength = \"30 MPa\"\ncrack_speed = \"1.5 "
@@ -562,6 +577,20 @@ std::vector<BadFractureScene> bad_scenes() {
        "crack_speed", "materials[0].crack_speed", "positive crack speed"},
       {"strength_without_damage", with_material_keys("strength = \"50 MPa\""), "strength",
        "materials[0].strength", "only with a damage law"},
+      {"unknown_averaging",
+       replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\naveraging = \"kernel\""),
+       "averaging", "materials[0].averaging", "one of \"local\""},
+      {"averaging_with_ttf",
+       with_material_keys(
+           "damage = \"time-to-failure\"\nstrength = 1e6\ncrack_speed = 100\naveraging = "
+           "\"nonlocal\""),
+       "averaging", "materials[0].averaging", "only with damage = \"rankine\""},
+      // Nonlocal: l_ch = 4.1 h = 2.05 mm at h = 0.5 mm, above the glass's 1.12 mm; the largest
+      // admissible cell is 1.12 mm / 4.1 = 0.273 mm.
+      {"nonlocal_snap_back",
+       replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\naveraging = \"nonlocal\""),
+       "fracture_energy", "materials[0].fracture_energy",
+       "the largest admissible cell size is 0.000273"},
       {"unknown_degradation",
        replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ndegradation = \"spectral\""),
        "degradation", "materials[0].degradation", "one of \"tensile\""},

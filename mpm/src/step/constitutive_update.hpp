@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "fragmpm/mpm/damage_law.hpp"
 #include "step/step_state.hpp"
@@ -18,16 +19,30 @@ struct ConstitutiveResult {
   double dissipated = 0.0;  ///< released by this update's damage increment [J/m³]
 };
 
+/// The trial (undamaged) stress σ̄ of particle p from F and, with the thermal module, θ.
+template <int D, bool Thermal>
+inline Mat<D> trial_stress(const StepState<D>& state, std::int64_t p, double& psi) {
+  const auto& P = state.problem.particles;
+  const int material = P.material[p];
+  Mat<D> trial;
+  state.models[static_cast<std::size_t>(material)].template stress_and_energy<D>(P.F[p], trial,
+                                                                                 psi);
+  if constexpr (Thermal) trial += state.thermal->stress(material, P.F[p], P.temperature[p]);
+  return trial;
+}
+
 /// AdvanceDamage: evaluate the damage law (the step); false keeps d (initial state, restart).
+/// `equivalent_stress`: when finite, the σ₁ that drives the damage law in place of the trial
+/// stress's own largest principal value (the nonlocal average, nonlocal_damage.cpp).
 template <int D, bool Thermal, bool AdvanceDamage>
-inline ConstitutiveResult update_constitutive(StepState<D>& state, std::int64_t p, double dt) {
+inline ConstitutiveResult update_constitutive(
+    StepState<D>& state, std::int64_t p, double dt,
+    double equivalent_stress = std::numeric_limits<double>::quiet_NaN()) {
   auto& P = state.problem.particles;
   const int material = P.material[p];
   const NeoHookean& model = state.models[static_cast<std::size_t>(material)];
-  Mat<D> trial;
   double psi;
-  model.stress_and_energy<D>(P.F[p], trial, psi);
-  if constexpr (Thermal) trial += state.thermal->stress(material, P.F[p], P.temperature[p]);
+  const Mat<D> trial = trial_stress<D, Thermal>(state, p, psi);
   if (!state.material_damages[static_cast<std::size_t>(material)]) {
     P.stress[p] = trial;
     return {psi, 0.0};
@@ -35,9 +50,13 @@ inline ConstitutiveResult update_constitutive(StepState<D>& state, std::int64_t 
   const MaterialSpec& spec = state.problem.materials[static_cast<std::size_t>(material)];
   const double damage_before = P.damage[p];
   if constexpr (AdvanceDamage) {
-    update_damage<D>(spec.damage, trial, P.strength[p],
-                     characteristic_length<D>(spec, P.volume0[p], state.grid.cell_size), dt,
-                     P.damage_history[p], P.damage[p]);
+    const double l_ch = characteristic_length<D>(spec, P.volume0[p], state.grid.cell_size);
+    if (std::isfinite(equivalent_stress))
+      update_damage_from_equivalent(spec.damage, equivalent_stress, P.strength[p], l_ch, dt,
+                                    P.damage_history[p], P.damage[p]);
+    else
+      update_damage<D>(spec.damage, trial, P.strength[p], l_ch, dt, P.damage_history[p],
+                       P.damage[p]);
   }
   const double d = P.damage[p];
   if (d <= 0.0) {

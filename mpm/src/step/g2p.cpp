@@ -13,6 +13,7 @@
 
 #include "step/affine_motion.hpp"
 #include "step/constitutive_update.hpp"
+#include "step/failed_domain.hpp"
 #include "step/failure_text.hpp"
 #include "step/particle_loops.hpp"
 #include "step/stages.hpp"
@@ -20,20 +21,6 @@
 namespace fragmpm::mpm {
 
 namespace {
-
-/// Failed particles keep their CPDI domain within one cell: the longest diagonal is scaled down to
-/// h ([HH17] §2.6), so a fully damaged particle cannot smear across the crack it opened.
-template <int D>
-void limit_failed_domain(Mat<D>& domain, double cell_size) {
-  double longest2 = 0.0;
-  for (int signs = 0; signs < (1 << (D - 1)); ++signs) {
-    Vec<D> diagonal = domain.col(0);
-    for (int k = 1; k < D; ++k) diagonal += ((signs >> (k - 1)) & 1 ? -1.0 : 1.0) * domain.col(k);
-    longest2 = std::max(longest2, diagonal.squaredNorm());
-  }
-  const double limit2 = cell_size * cell_size;
-  if (longest2 > limit2) domain *= std::sqrt(limit2 / longest2);
-}
 
 template <int D>
 NumericalFailure inverted_particle(const StepState<D>& state, std::int64_t p, double dt) {
@@ -67,6 +54,8 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0,
          penalty_work = 0.0, max_speed = 0.0;
   std::int64_t failed = -1;
+  const bool nonlocal = state.nonlocal_damage;
+  if (nonlocal) size_array(state.local_equivalent, P.size());
   const int slots = omp_get_max_threads();
   constexpr int A = Axial<D>::RowsAtCompileTime;
   constexpr std::size_t per_thread = D + A;
@@ -112,11 +101,19 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
         if (first_failed < 0) first_failed = p;
         continue;
       }
-      const ConstitutiveResult energy = update_constitutive<D, Thermal, true>(state, p, dt);
-      strain += P.volume0[p] * energy.stored;
-      dissipated += P.volume0[p] * energy.dissipated;
-      if constexpr (deform_domain)
-        if (P.damage[p] >= 1.0) limit_failed_domain<D>(P.domain[p], cell_size);
+      if (nonlocal && state.material_nonlocal[static_cast<std::size_t>(P.material[p])]) {
+        // The damage law needs the neighbours' σ₁ of this step: stress, damage and stored energy
+        // follow in nonlocal_constitutive_update once every particle has its trial stress.
+        double psi;
+        state.local_equivalent[static_cast<std::size_t>(p)] =
+            largest_principal_stress<D>(trial_stress<D, Thermal>(state, p, psi));
+      } else {
+        const ConstitutiveResult energy = update_constitutive<D, Thermal, true>(state, p, dt);
+        strain += P.volume0[p] * energy.stored;
+        dissipated += P.volume0[p] * energy.dissipated;
+        if constexpr (deform_domain)
+          if (P.damage[p] >= 1.0) limit_failed_domain<D>(P.domain[p], cell_size);
+      }
       kinetic += 0.5 * P.mass[p] * P.v[p].squaredNorm();
       angular_momentum += P.mass[p] * cross<D>(P.x[p], P.v[p]);
       if constexpr (Affine) {
@@ -139,6 +136,12 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
     if (first_failed >= 0 && (failed < 0 || first_failed < failed)) failed = first_failed;
   }
   if (failed >= 0) return inverted_particle(state, failed, dt);
+  if (nonlocal) {
+    const ConstitutiveSums sums =
+        nonlocal_constitutive_update<D, Thermal>(state, dt, deform_domain);
+    strain += sums.stored;
+    dissipated += sums.dissipated;
+  }
   state.row.momentum.setZero();
   state.row.angular_momentum.setZero();
   for (std::size_t t = 0; t < static_cast<std::size_t>(slots); ++t) {

@@ -77,6 +77,19 @@ void thermal_finish(StepState<D>& state, double dt);
 template <int D, ShapeFunctionKind Kind, bool Partitioned, bool Thermal, bool Affine>
 std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt);
 
+/// Energy sums of a constitutive pass [J per unit thickness in 2D].
+struct ConstitutiveSums {
+  double stored = 0.0;      ///< Σ V₀ (ψ − d ψ_t)
+  double dissipated = 0.0;  ///< Σ V₀ Δd ψ_t
+};
+
+/// The constitutive update of the particles of nonlocal Rankine materials, after G2P has stored
+/// their trial σ₁ in state.local_equivalent: the kernel average σ̄₁ over the cell-diagonal
+/// neighbourhood drives their damage law. `limit_domains`: CPDI, keep failed domains within a
+/// cell. (nonlocal_damage.cpp)
+template <int D, bool Thermal>
+ConstitutiveSums nonlocal_constitutive_update(StepState<D>& state, double dt, bool limit_domains);
+
 /// With `[grid] outside = "remove"`, after the step: books and removes the particles whose
 /// position left [grid.min, grid.max], and recomputes the next step's Δt limit without them. A
 /// departure with a non-finite state or faster than departure_speed_factor times the largest wave

@@ -107,6 +107,12 @@ struct StepState {
   StepPlan plan;
   std::vector<NeoHookean> models;
   std::vector<char> material_damages;
+  /// Per material: the Rankine law runs on the nonlocal σ̄₁ (RankineSoftening::nonlocal).
+  std::vector<char> material_nonlocal;
+  bool nonlocal_damage = false;  ///< some material is nonlocal: G2P defers its constitutive update
+  /// Nonlocal materials only: the trial largest principal stress σ₁ of each particle, then its
+  /// kernel average σ̄₁ [Pa] (nonlocal_damage.cpp).
+  std::vector<double> local_equivalent, nonlocal_equivalent;
   double time = 0.0;
   long long step = 0;
   EnergyAccumulators totals;

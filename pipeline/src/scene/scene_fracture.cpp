@@ -98,8 +98,8 @@ void check_softening(const Section& m, const mpm::MaterialSpec& spec,
 
 const std::vector<std::string_view>& damage_keys() {
   static const std::vector<std::string_view> keys = {
-      "damage",      "strength", "fracture_energy",      "crack_speed",
-      "degradation", "weibull",  "characteristic_length"};
+      "damage",      "strength", "fracture_energy",       "crack_speed",
+      "degradation", "weibull",  "characteristic_length", "averaging"};
   return keys;
 }
 
@@ -163,6 +163,13 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     r.fracture_energy = m.quantity("fracture_energy", QK::energy_per_area);
     if (!(r.fracture_energy > 0.0)) m.expected("fracture_energy", "a positive fracture energy G_f");
     r.youngs_modulus = youngs_modulus(spec);
+    const std::string averaging = m.optional_string("averaging").value_or("local");
+    if (averaging == "nonlocal")
+      r.nonlocal = true;
+    else if (averaging != "local")
+      m.expected("averaging",
+                 "one of \"local\" (the particle's own largest principal stress drives the law) "
+                 "or \"nonlocal\" (its kernel average over the cell diagonal)");
     spec.damage = r;
     // l_ch of a lattice particle (volume s² per unit thickness), as the solver computes it: known
     // only once the law is set (before, the default for no damage law would be taken).
@@ -183,6 +190,9 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
       m.fail("fracture_energy",
              "expected fracture_energy only with damage = \"rankine\", got it with "
              "\"time-to-failure\"");
+    if (m.has("averaging"))
+      m.fail("averaging",
+             "expected averaging only with damage = \"rankine\", got it with \"time-to-failure\"");
     mpm::TimeToFailure t;
     t.crack_speed = m.quantity("crack_speed", QK::velocity);
     if (!(t.crack_speed > 0.0))

@@ -44,8 +44,9 @@ double band_width(const mpm::Particles<2>& P) {
 
 /// length_over_cell: l_ch / h, or 0 for the scene's default l_ch.
 std::vector<VerifyRow> run_level(int level, double cell_size, double length_over_cell,
-                                 const std::string& variant) {
+                                 const std::string& averaging, const std::string& variant) {
   std::map<std::string, std::string> overrides{{"grid.cell_size", toml_number(cell_size)},
+                                               {"materials[0].averaging", "\"" + averaging + "\""},
                                                {"output.interval", "0.0"}};
   if (length_over_cell > 0.0)
     overrides["materials[0].characteristic_length"] = toml_number(cell_size * length_over_cell);
@@ -75,7 +76,9 @@ std::vector<VerifyRow> run_level(int level, double cell_size, double length_over
   dissipation.value = solver.last_row().totals.dissipated;
   dissipation.reference = fracture_energy * ligament;
   dissipation.error = relative_error(dissipation.value, dissipation.reference);
-  if (length_over_cell == 0.0) {  // docs/verification.md: within 5 % at every level
+  // docs/verification.md: the default (local) law within 5 % at every level; the nonlocal law is
+  // a labelled variant whose calibration is listed under the known shortfalls.
+  if (length_over_cell == 0.0 && averaging == "local") {
     dissipation.target_low = 0.95 * dissipation.reference;
     dissipation.target_high = 1.05 * dissipation.reference;
   }
@@ -203,11 +206,19 @@ std::vector<VerifyRow> verify_bar_tension(const VerifyOptions& options) {
   std::vector<double> cells{0.5e-3, 0.25e-3};
   if (!options.quick) cells.push_back(0.125e-3);
   std::vector<VerifyRow> rows;
-  const std::vector<std::pair<double, std::string>> variants{
-      {0.0, "l_ch-default"}, {1.0, "l_ch-cell-size"}, {std::sqrt(2.0), "l_ch-cell-diagonal"}};
-  for (const auto& [length_over_cell, variant] : variants)
+  struct Variant {
+    double length_over_cell;
+    const char* averaging;
+    const char* name;
+  };
+  const Variant variants[] = {{0.0, "local", "l_ch-default"},
+                              {1.0, "local", "l_ch-cell-size"},
+                              {std::sqrt(2.0), "local", "l_ch-cell-diagonal"},
+                              {0.0, "nonlocal", "nonlocal-default"}};
+  for (const Variant& v : variants)
     for (std::size_t level = 0; level < cells.size(); ++level)
-      for (auto& r : run_level(static_cast<int>(level), cells[level], length_over_cell, variant))
+      for (auto& r : run_level(static_cast<int>(level), cells[level], v.length_over_cell,
+                               v.averaging, v.name))
         rows.push_back(std::move(r));
   // Time to failure: τ from the cell diagonal (the default, [HH17] §2.7) and from the particle
   // size.

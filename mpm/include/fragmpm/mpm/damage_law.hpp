@@ -18,6 +18,10 @@ struct NoDamage {};
 struct RankineSoftening {
   double fracture_energy = 0.0;  ///< G_f [J/m²]
   double youngs_modulus = 0.0;  ///< E [Pa], for the brittleness H̄ = σ_f² / (2 E G_f) (eq. (21))
+  /// Drive the law with the kernel average σ̄₁ of the trial largest principal stress over the
+  /// particles within the cell diagonal ([PCB87]; docs/design.md "Nonlocal Rankine"), so the band
+  /// the damage localises in is as wide as the averaging, not as one particle row.
+  bool nonlocal = false;
 };
 
 /// Time to failure ([HH17] eq. (24)): once the largest principal stress reaches σ_f, d grows by
@@ -77,6 +81,12 @@ double rankine_largest_characteristic_length(double strength, const RankineSofte
 template <int D>
 void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double strength,
                    double characteristic_length, double dt, double& history, double& damage);
+
+/// The same update driven by a given equivalent stress σ₁ [Pa] in place of the trial stress's
+/// largest principal value: the nonlocal Rankine law passes the kernel average σ̄₁ here.
+void update_damage_from_equivalent(const DamageLaw& law, double equivalent_stress, double strength,
+                                   double characteristic_length, double dt, double& history,
+                                   double& damage);
 
 /// Largest principal value of a symmetric stress [Pa]; in 2D the largest in-plane one (see
 /// damage_law.cpp for why the out-of-plane stress of plane strain never decides a tensile failure).

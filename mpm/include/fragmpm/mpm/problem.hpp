@@ -47,6 +47,10 @@ struct MaterialSpec {
 /// discretisation sets.
 inline constexpr double rankine_band_cells = 1.13;
 
+/// Width of the crack band of nonlocal Rankine softening in cells (RankineSoftening::nonlocal):
+/// the averaging over the cell diagonal damages a band about two radii wide.
+inline constexpr double rankine_nonlocal_band_cells = 4.1;
+
 /// The characteristic length l_ch [m] of a particle of `material` with reference volume V₀ (an area
 /// per unit thickness in 2D) on a grid of `cell_size` h: the material's `characteristic_length`
 /// when the scene gives one; for Rankine softening the band width rankine_band_cells × h; for time
@@ -61,8 +65,8 @@ template <int D>
 inline double characteristic_length(const MaterialSpec& material, double reference_volume,
                                     double cell_size) {
   if (material.characteristic_length > 0.0) return material.characteristic_length;
-  if (std::holds_alternative<RankineSoftening>(material.damage))
-    return rankine_band_cells * cell_size;
+  if (const auto* rankine = std::get_if<RankineSoftening>(&material.damage))
+    return (rankine->nonlocal ? rankine_nonlocal_band_cells : rankine_band_cells) * cell_size;
   (void)reference_volume;
   return std::sqrt(double(D)) * cell_size;
 }
