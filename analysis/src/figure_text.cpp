@@ -1,8 +1,13 @@
-// Figure text with OpenCV Hershey fonts (see figure_text.hpp).
+// Figure text with DejaVu Sans through OpenCV's FreeType module, or the Hershey fonts when no
+// TrueType font is installed (see figure_text.hpp).
 #include "figure_text.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <opencv2/freetype.hpp>
 #include <opencv2/imgproc.hpp>
 #include <utility>
 #include <vector>
@@ -13,6 +18,68 @@ namespace {
 
 constexpr int font = cv::FONT_HERSHEY_SIMPLEX;
 constexpr double superscript_scale = 0.68;
+/// Pixel height of the TrueType em per unit of TextStyle::scale: DejaVu Sans capitals are 0.73 em,
+/// so a scale of 1 gives the 22 px capitals of the Hershey font it replaces.
+constexpr double em_per_scale = 30.0;
+
+/// The TrueType font of this thread (FreeType2 objects are not shared between threads), or null
+/// when none is installed. FRAGMPM_FONT names another font file.
+cv::freetype::FreeType2* truetype() {
+  thread_local std::unique_ptr<cv::Ptr<cv::freetype::FreeType2>> loaded;
+  if (!loaded) {
+    loaded = std::make_unique<cv::Ptr<cv::freetype::FreeType2>>();
+    std::vector<std::string> candidates;
+    if (const char* env = std::getenv("FRAGMPM_FONT")) candidates.emplace_back(env);
+    candidates.emplace_back("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf");
+    for (const std::string& path : candidates) {
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(path, ec)) continue;
+      try {
+        cv::Ptr<cv::freetype::FreeType2> f = cv::freetype::createFreeType2();
+        f->loadFontData(path, 0);
+        *loaded = f;
+        break;
+      } catch (const cv::Exception&) {
+        // not a font FreeType can read: try the next one, then fall back to Hershey
+      }
+    }
+  }
+  return loaded->get();
+}
+
+/// FreeType2::putText places a run by the top of the font's line, not by its baseline: the
+/// distance from that point down to the baseline, found once per font height by drawing "H" (which
+/// sits on the baseline and has no descender) and taking the row below its lowest ink.
+int baseline_below_origin(cv::freetype::FreeType2& f, int height) {
+  thread_local std::vector<std::pair<int, int>> known;
+  for (const auto& [h, offset] : known)
+    if (h == height) return offset;
+  cv::Mat probe = cv::Mat::zeros(4 * height + 8, 2 * height + 8, CV_8UC3);
+  f.putText(probe, "H", cv::Point(2, 0), height, cv::Scalar(255, 255, 255), -1, cv::LINE_8, false);
+  int lowest = -1;
+  for (int r = 0; r < probe.rows; ++r)
+    for (int c = 0; c < probe.cols; ++c)
+      if (probe.at<cv::Vec3b>(r, c)[0] > 127) lowest = r;
+  const int offset = lowest + 1;
+  known.emplace_back(height, offset);
+  return offset;
+}
+
+/// The text as drawn: UTF-8 with a TrueType font, transliterated ASCII with Hershey.
+std::string drawable(const std::string& utf8) {
+  return truetype() ? utf8 : ascii_text(utf8);
+}
+
+cv::Size measure(const std::string& s, double scale, int thickness, int* descent) {
+  if (auto* f = truetype()) {
+    int baseline = 0;
+    const int height = static_cast<int>(std::lround(em_per_scale * scale));
+    const cv::Size size = f->getTextSize(s, height, -1, &baseline);
+    if (descent) *descent = baseline;
+    return size;
+  }
+  return cv::getTextSize(s, font, scale, thickness, descent);
+}
 
 struct Placed {
   std::string text;
@@ -31,13 +98,13 @@ struct Layout {
 Layout layout(const RichText& text, const TextStyle& style) {
   int x = 0, top = 0, bottom = 0;  // relative to the main baseline (y down, top negative)
   std::vector<std::pair<Placed, int>> runs;
-  int base_height = cv::getTextSize("0", font, style.scale, style.thickness, nullptr).height;
+  int base_height = measure("0", style.scale, style.thickness, nullptr).height;
   for (const TextRun& r : text) {
-    const std::string s = ascii_text(r.text);
+    const std::string s = drawable(r.text);
     if (s.empty()) continue;
     const double scale = r.superscript ? style.scale * superscript_scale : style.scale;
     int descent = 0;
-    const cv::Size sz = cv::getTextSize(s, font, scale, style.thickness, &descent);
+    const cv::Size sz = measure(s, scale, style.thickness, &descent);
     const int raise = r.superscript ? static_cast<int>(std::lround(0.55 * base_height)) : 0;
     runs.push_back({Placed{s, scale, x, 0}, raise});
     top = std::min(top, -raise - sz.height);
@@ -105,9 +172,21 @@ void draw_text(cv::Mat& image, const RichText& text, cv::Point2d anchor, HAlign 
   if (l.size.width <= 0 || l.size.height <= 0) return;
   // Coverage mask of the text, then blended in: lets rotated text share the horizontal code path.
   cv::Mat mask = cv::Mat::zeros(l.size.height + l.extra, l.size.width, CV_8UC1);
-  for (const Placed& p : l.runs)
-    cv::putText(mask, p.text, cv::Point(p.x, p.baseline), font, p.scale, cv::Scalar(255),
-                style.thickness, cv::LINE_AA);
+  if (auto* f = truetype()) {
+    // FreeType2 draws into three channels; the coverage is any one of them.
+    cv::Mat colour_mask = cv::Mat::zeros(mask.size(), CV_8UC3);
+    for (const Placed& p : l.runs) {
+      const int height = static_cast<int>(std::lround(em_per_scale * p.scale));
+      f->putText(colour_mask, p.text,
+                 cv::Point(p.x, p.baseline - baseline_below_origin(*f, height)), height,
+                 cv::Scalar(255, 255, 255), -1, cv::LINE_AA, false);
+    }
+    cv::extractChannel(colour_mask, mask, 0);
+  } else {
+    for (const Placed& p : l.runs)
+      cv::putText(mask, p.text, cv::Point(p.x, p.baseline), font, p.scale, cv::Scalar(255),
+                  style.thickness, cv::LINE_AA);
+  }
   // Align the nominal box; the extra rows above it (left of it once rotated) overhang the anchor.
   if (vertical) cv::rotate(mask, mask, cv::ROTATE_90_COUNTERCLOCKWISE);
   const double w = vertical ? l.size.height : l.size.width,

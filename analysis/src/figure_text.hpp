@@ -1,7 +1,8 @@
 #pragma once
-// Text of the figures, drawn with OpenCV's Hershey fonts after the OpenGL geometry is read back
-// (private to analysis/). Hershey fonts hold printable ASCII only, so UTF-8 text is transliterated
-// (µ → u, ° → deg, σ → sigma, − and — → -, ² → ^2 …) before drawing.
+// Text of the figures, drawn after the OpenGL geometry is read back (private to analysis/): UTF-8
+// (µ, °, σ, ², −) with DejaVu Sans through OpenCV's FreeType module (Debian's fonts-dejavu-core;
+// FRAGMPM_FONT names another TrueType file). Without a TrueType font the Hershey fonts draw it,
+// which hold printable ASCII only, so the text is then transliterated (µ → u, ° → deg, ² → ^2 …).
 #include <opencv2/core.hpp>
 #include <string>
 

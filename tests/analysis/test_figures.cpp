@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
@@ -573,4 +574,25 @@ TEST(FrameFigure, StressColourRangeIsClippedToThePercentilesOfLargeFrames) {
 TEST(ParticleFigure, NoIdSharesTheGreyOfNone) {
   for (std::int64_t id = 0; id < 1000; ++id)
     ASSERT_NE(categorical_colour(id), no_data_colour()) << id;
+}
+
+// Figure text is drawn with a TrueType font (DejaVu Sans from Debian's fonts-dejavu-core), so µ is
+// its own glyph: a label with "µs" must not render like one with "us", as it did when the text was
+// transliterated to ASCII for the Hershey fonts.
+TEST(FigureText, MicroSignIsDrawnAsItsOwnGlyph) {
+  const auto plot = [](const std::string& unit) {
+    fragmpm::analysis::PlotSpec spec;
+    spec.title = "t";
+    spec.x_label = "time [" + unit + "]";
+    spec.y_label = "y";
+    spec.series.push_back({"", {0.0, 1.0}, {0.0, 1.0}, false});
+    spec.width = 400;
+    spec.height = 300;
+    return fragmpm::analysis::render_line_plot(spec);
+  };
+  const cv::Mat micro = plot("\u00b5s"), ascii = plot("us");
+  ASSERT_EQ(micro.size(), ascii.size());
+  cv::Mat difference;
+  cv::absdiff(micro, ascii, difference);
+  EXPECT_GT(cv::countNonZero(difference.reshape(1)), 10);
 }
