@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 
 #include "../support/read_text.hpp"
@@ -227,4 +228,27 @@ TEST(PipelineCommand, TinyRunWritesEverything) {
   EXPECT_NE(summary.find("with J > 2, largest |principal stress| "), std::string::npos) << summary;
   EXPECT_NE(summary.find("(frame 2, t = 100 ns)"), std::string::npos) << summary;
   EXPECT_NE(log.find(summary.substr(0, 24)), std::string::npos);  // the summary is printed too
+
+  // report.html: every figure it shows exists, and it names the run's numbers.
+  const std::string page = read_text(out / "report.html");
+  const std::regex image(R"re(<img src="([^"]+)")re");
+  int images = 0;
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), image);
+       it != std::sregex_iterator(); ++it, ++images)
+    EXPECT_TRUE(fs::exists(out / (*it)[1].str())) << (*it)[1].str();
+  EXPECT_GE(images, 14);  // preview, 4 fields, fragment map, 6 statistics, energy, force
+  const std::smatch particles = [&] {
+    std::smatch m;
+    std::regex_search(summary, m, std::regex(R"((\d+) particles\n)"));
+    return m;
+  }();
+  ASSERT_FALSE(particles.empty()) << summary;
+  EXPECT_NE(page.find("<th>particles</th><td>" + particles[1].str() + "</td>"), std::string::npos);
+  std::smatch steps;
+  ASSERT_TRUE(std::regex_search(summary, steps, std::regex(R"(run: +(\d+) steps)")));
+  EXPECT_NE(page.find(steps[1].str() + " steps to t = "), std::string::npos);
+  EXPECT_NE(page.find("energy balance"), std::string::npos);
+  EXPECT_NE(page.find("largest volume ratio J"), std::string::npos);
+  EXPECT_EQ(page.find("<script"), std::string::npos);
+  EXPECT_EQ(page.find("http"), std::string::npos);  // nothing from the network
 }

@@ -71,6 +71,7 @@ int execute(const DemoArguments& a) {
     const PipelineResult r = run_pipeline(o, stderr);
     const fs::path dir(a.output);
     std::printf("fragmpm demo: everything is in %s/\n", a.output.c_str());
+    std::printf("  open this first        %s\n", (dir / "report.html").string().c_str());
     std::printf("  segmentation preview   %s\n", (dir / "segmentation.png").string().c_str());
     std::printf("  run file (+ XDMF)      %s (%s)\n", r.run_path.c_str(),
                 (dir / "run.xmf").string().c_str());

@@ -9,6 +9,7 @@
 //                               fragment figures of the analysed frames, energy and
 //                               force–displacement
 //   summary.txt                 grains, fragments, energy balance error, wall time
+//   report.html                 one static page: the summary, the trust checks, every figure
 #include <fmt/format.h>
 #include <omp.h>
 #include <toml++/toml.h>
@@ -27,12 +28,14 @@
 #include "fragmpm/analysis/plot.hpp"
 #include "fragmpm/analysis/series_figures.hpp"
 #include "fragmpm/analysis/si_format.hpp"
+#include "fragmpm/mpm/build_info.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 #include "fragmpm/mpm/run_file_reader.hpp"
 #include "fragmpm/mpm/state_extremes.hpp"
 #include "fragmpm/pipeline/analyze.hpp"
 #include "fragmpm/pipeline/commands.hpp"
 #include "fragmpm/pipeline/pipeline_job.hpp"
+#include "fragmpm/pipeline/report_html.hpp"
 #include "fragmpm/pipeline/run_loop.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/segment.hpp"
@@ -144,6 +147,9 @@ struct RunFacts {
   std::string failure;
   /// Extremes of the last frame (the end state of a finished run), or why there are none.
   std::string end_state;
+  bool has_extremes = false;
+  mpm::StateExtremes extremes;
+  std::vector<mpm::ModuleDecision> modules;
 };
 
 double input_energy(const mpm::SeriesRow<2>& row) {
@@ -212,6 +218,93 @@ std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& p
       "{:.1f} s), {} thread(s)\n",
       total_s, setup_s, r.run_seconds, analysis_s, threads);
   return s.str();
+}
+
+/// The page a person opens first: what ran, whether to trust it, and every figure with a caption.
+Report pipeline_report(const PipelineOptions& o, const std::vector<Preview>& previews,
+                       const RunFacts& r, const AnalyzeResult* a, int threads, double total_s,
+                       const std::string& summary, const fs::path& dir,
+                       const std::vector<std::string>& files) {
+  Report report;
+  report.title = "FragMPM run: " + fs::path(o.scene_path).filename().string();
+  report.subtitle = fmt::format("image {}, scene {}, fragmpm {} ({})", o.image, o.scene_path,
+                                mpm::program_version(), mpm::program_git_hash());
+  std::size_t grains = 0;
+  for (const Preview& p : previews) grains += p.grains;
+  report.summary.push_back({"grains", fmt::format("{} segmented, {} simulated", grains, r.bodies)});
+  report.summary.push_back({"particles", fmt::format("{}", r.particles)});
+  report.summary.push_back({"run", fmt::format("{} steps to t = {}, platen travel {}, {} frames",
+                                               r.steps, analysis::format_si(r.end_time, "s", 4),
+                                               analysis::format_si(r.travel, "m", 4), r.frames)});
+  report.summary.push_back(
+      {"wall time", fmt::format("{:.1f} s in all, of which the run {:.1f} s, on {} thread(s)",
+                                total_s, r.run_seconds, threads)});
+  for (const mpm::ModuleDecision& m : r.modules)
+    report.summary.push_back(
+        {"module " + m.module, std::string(m.active ? "on: " : "off: ") + m.reason});
+  if (a && !a->frames.empty()) {
+    const AnalyzedFrame& f = a->frames.back();
+    const analysis::FragmentSummary& m = f.fragments.summary;
+    report.summary.push_back(
+        {"fragments", fmt::format("{} resolved and {} fines at t = {} (mean d_eq {}, largest {})",
+                                  m.fragments, m.fines, analysis::format_si(f.time, "s", 3),
+                                  analysis::format_si(m.mean_equivalent_diameter, "m", 3),
+                                  analysis::format_si(m.largest_equivalent_diameter, "m", 3))});
+  }
+
+  // Trust: the limits are those of the stability scenes (docs/verification.md).
+  if (r.failed) report.checks.push_back({"numerical failure", r.failure, true});
+  const auto& t = r.last.totals;
+  const double input = input_energy(r.last);
+  const double share = input > 0 ? std::abs(r.last.balance_error) / input : 0.0;
+  report.checks.push_back(
+      {"energy balance",
+       fmt::format("error {:.4g} J/m = {:.3g} % of the input {:.4g} J/m (limit 2 %); booked: "
+                   "damage {:.4g}, friction {:.4g}, contact {:.4g}, transfer {:.4g}, departed "
+                   "{:.4g} J/m",
+                   r.last.balance_error, 100.0 * share, input, t.dissipated, t.friction_work,
+                   t.contact_dissipation, t.transfer_dissipation, t.lost.kinetic + t.lost.strain),
+       share > 0.02});
+  if (r.has_extremes) {
+    report.checks.push_back(
+        {"largest volume ratio J",
+         fmt::format("{:.4g}; {} particle(s) above J = {:g}", r.extremes.largest_J,
+                     r.extremes.swollen, mpm::swollen_volume_ratio),
+         r.extremes.swollen > 0});
+    report.checks.push_back(
+        {"largest |principal stress|", analysis::format_si(r.extremes.largest_stress, "Pa", 4)});
+  }
+  report.checks.push_back({"particles removed", fmt::format("{} left the domain (mass {:.4g} kg/m)",
+                                                            t.lost.count, t.lost.mass)});
+
+  ReportSection segmentation{"Segmentation", {}}, fields{"Fields at the last frame", {}},
+      maps{"Fragment maps", {}}, statistics{"Fragment statistics", {}},
+      series{"Energy and force", {}};
+  for (const std::string& file : files) {
+    const std::string relative = fs::path(file).lexically_relative(dir).generic_string();
+    const std::string caption = figure_caption(relative);
+    if (caption.empty()) continue;
+    ReportSection& section = relative.rfind("segmentation", 0) == 0            ? segmentation
+                             : relative.find("_last.png") != std::string::npos ? fields
+                             : relative.rfind("figures/fragments_", 0) == 0    ? maps
+                             : relative.rfind("fragments/", 0) == 0            ? statistics
+                                                                               : series;
+    std::string text = caption;
+    if (&section == &maps && a)
+      for (const AnalyzedFrame& f : a->frames)
+        if (relative == fmt::format("figures/fragments_{:06d}.png", f.frame))
+          text = fmt::format("{} fragments and {} fines at t = {}{}. {}",
+                             f.fragments.summary.fragments, f.fragments.summary.fines,
+                             analysis::format_si(f.time, "s", 3),
+                             std::isfinite(f.platen_displacement)
+                                 ? ", platen " + analysis::format_si(f.platen_displacement, "m", 3)
+                                 : std::string(),
+                             caption);
+    section.figures.push_back({relative, text});
+  }
+  report.sections = {segmentation, fields, maps, statistics, series};
+  report.details = summary;
+  return report;
 }
 
 }  // namespace
@@ -291,6 +384,7 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
   meta.scene_path = problem.scene_path;
   meta.scene_text = problem.scene_text;
   meta.modules = mpm::plan_modules<2>(problem);
+  facts.modules = meta.modules;
   for (const auto& w : problem.walls) meta.wall_names.push_back(w.name);
   const int threads = omp_get_max_threads();
   say(log, fmt::format(
@@ -352,10 +446,12 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
     double time = 0.0;
     const mpm::Particles<2> particles = file.read_frame<2>(last, &time);
     const mpm::FrameEntry& frame = file.frames().back();
+    facts.has_extremes = frame.has("F") && frame.has("stress");
+    if (facts.has_extremes) facts.extremes = mpm::state_extremes<2>(particles);
     facts.end_state =
-        frame.has("F") && frame.has("stress")
-            ? fmt::format("{} (frame {}, t = {})", mpm::describe(mpm::state_extremes<2>(particles)),
-                          frame.index, analysis::format_si(time, "s", 4))
+        facts.has_extremes
+            ? fmt::format("{} (frame {}, t = {})", mpm::describe(facts.extremes), frame.index,
+                          analysis::format_si(time, "s", 4))
             : fmt::format("frame {} has no F or stress (the scene's [output] fields)", frame.index);
     const struct {
       analysis::FrameField field;
@@ -401,6 +497,13 @@ PipelineResult run_pipeline(const PipelineOptions& o, std::FILE* log) {
   out << result.summary;
   if (!out) throw PipelineError(fmt::format("{}: cannot write", result.summary_path));
   result.files.push_back(result.summary_path);
+
+  const std::string report_path = (dir / "report.html").string();
+  write_report(pipeline_report(o, previews, facts, analyzed.get(), threads, seconds_since(start),
+                               result.summary, dir, result.files),
+               report_path);
+  result.files.push_back(report_path);
+  say(log, fmt::format("fragmpm pipeline: report -> {}", report_path));
   return result;
 }
 
