@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "fragmpm/analysis/label_text.hpp"
+
 namespace fragmpm::analysis::detail {
 
 namespace {
@@ -235,3 +237,17 @@ FigureStyle figure_style(int width, int height) {
 }
 
 }  // namespace fragmpm::analysis::detail
+
+namespace fragmpm::analysis {
+
+cv::Size label_extent(const std::string& utf8, double scale) {
+  return detail::text_extent(detail::plain(utf8), detail::TextStyle{scale, 1, Rgb{}});
+}
+
+void draw_label(cv::Mat& image, const std::string& utf8, cv::Point top_left, double scale,
+                Rgb colour) {
+  detail::draw_text(image, detail::plain(utf8), cv::Point2d(top_left.x, top_left.y),
+                    detail::HAlign::left, detail::VAlign::top, detail::TextStyle{scale, 1, colour});
+}
+
+}  // namespace fragmpm::analysis

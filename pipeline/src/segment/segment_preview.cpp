@@ -9,6 +9,8 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "fragmpm/analysis/label_text.hpp"
+
 namespace fragmpm::pipeline {
 
 namespace {
@@ -128,7 +130,7 @@ cv::Mat draw_preview(const Segmentation& s) {
   std::sort(d.begin(), d.end());
   const double median_um = d.empty() ? 0.0 : 1e6 * d[d.size() / 2];
   std::vector<std::string> lines{
-      fmt::format("{} grains, median equivalent diameter {:.4g} um, pixel {:.4g} um",
+      fmt::format("{} grains, median equivalent diameter {:.4g} \u00b5m, pixel {:.4g} \u00b5m",
                   s.table.grains.size(), median_um, 1e6 * s.pixel_size)};
   if (s.table.dropped_small + s.table.dropped_border > 0)
     lines.push_back(
@@ -137,9 +139,8 @@ cv::Mat draw_preview(const Segmentation& s) {
   // Text scaled with the image, shrunk until the widest line fits.
   double scale = std::clamp(cols / 1400.0, 0.3, 1.5);
   auto widest = [&](double sc) {
-    int w = 0, baseline = 0;
-    for (const std::string& l : lines)
-      w = std::max(w, cv::getTextSize(l, cv::FONT_HERSHEY_SIMPLEX, sc, 1, &baseline).width);
+    int w = 0;
+    for (const std::string& l : lines) w = std::max(w, analysis::label_extent(l, sc).width);
     return w;
   };
   while (scale > 0.2 && widest(scale) > cols - 12) scale *= 0.9;
@@ -148,11 +149,9 @@ cv::Mat draw_preview(const Segmentation& s) {
   cv::Mat out(rows + strip, cols, CV_8UC3, cv::Scalar(32, 32, 32));
   canvas.copyTo(out(cv::Rect(0, 0, cols, rows)));
   for (std::size_t k = 0; k < lines.size(); ++k)
-    cv::putText(out, lines[k],
-                cv::Point(6, rows + static_cast<int>(k + 1) * line_height -
-                                 static_cast<int>(std::lround(6 * scale))),
-                cv::FONT_HERSHEY_SIMPLEX, scale,
-                k == 0 ? cv::Scalar(255, 255, 255) : cv::Scalar(120, 120, 255), 1, cv::LINE_AA);
+    analysis::draw_label(out, lines[k], cv::Point(6, rows + 3 + static_cast<int>(k) * line_height),
+                         scale,
+                         k == 0 ? analysis::Rgb{255, 255, 255} : analysis::Rgb{255, 120, 120});
   return out;
 }
 
