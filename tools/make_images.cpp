@@ -4,6 +4,7 @@
 //                                    and their ground-truth label images (*_truth.png, 16-bit)
 //   with --data DIR (the shared data folder, see images/PROVENANCE.md):
 //   OUT_DIR/miocene_sandstone_window.png   800 × 600 window of the sandstone class mask
+//   OUT_DIR/miocene_sandstone_pack.png     1000 × 750 window from the same corner (the demo)
 //   OUT_DIR/torrey_pines_beach_image.jpg   the beach photograph, re-encoded at JPEG quality 85
 //   OUT_DIR/torrey_pines_beach_mask.png    its ground-truth mask, recompressed
 // Deterministic: the same build writes the same synthetic images.
@@ -22,6 +23,8 @@ namespace {
 
 // Window of the sandstone mask: 51 grains of median equivalent diameter ≈ 68 µm at 1 µm/px.
 const cv::Rect kSandstoneWindow(3200, 1000, 800, 600);
+// The demo's pack: the same top-left corner, large enough for 40 grains clear of its edges.
+const cv::Rect kSandstonePack(3200, 1000, 1000, 750);
 
 void write(const fs::path& path, const cv::Mat& image, const std::vector<int>& params = {}) {
   if (!cv::imwrite(path.string(), image, params)) {
@@ -80,6 +83,7 @@ int main(int argc, char** argv) {
       return 1;
     }
     write(out / "miocene_sandstone_window.png", mask(kSandstoneWindow).clone(), kPng);
+    write(out / "miocene_sandstone_pack.png", mask(kSandstonePack).clone(), kPng);
     write(out / "torrey_pines_beach_image.jpg", photo, {cv::IMWRITE_JPEG_QUALITY, 85});
     write(out / "torrey_pines_beach_mask.png", truth, kPng);
   }

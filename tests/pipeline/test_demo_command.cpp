@@ -132,6 +132,37 @@ TEST(PipelineScene, DemoSceneCrushesSeveralGrainsBetweenPlatens) {
   EXPECT_GT(platen.velocity.velocity(problem.stop.end_time).norm(), 10.0);
 }
 
+TEST(PipelineScene, DemoPackHasFortyWholeGrainsAndHeats) {
+  // The default demo: the whole window, at least 40 grains not cut by its edges, the thermal
+  // module on (friction and damage heating as [XLS21] §4.5), the platen ramped from rest, and a
+  // stop on its travel (10 % of the 750 um height) reached before the end time.
+  const std::string text =
+      fp::scene_with_image(fp::embedded_scene("demo/sandstone-pack.toml"), "demo",
+                           std::string(FRAGMPM_SOURCE_DIR) + "/images/miocene_sandstone_pack.png");
+  const auto problem = fp::parse_scene(text, "demo");
+  std::size_t whole = 0;
+  for (std::size_t b = 0; b < problem.body_names.size(); ++b) {
+    double lowest_x = 1.0, highest_x = -1.0, lowest_y = 1.0, highest_y = -1.0;
+    for (std::size_t p = 0; p < problem.particles.size(); ++p) {
+      if (problem.particles.body[p] != static_cast<int>(b)) continue;
+      lowest_x = std::min(lowest_x, problem.particles.x[p][0]);
+      highest_x = std::max(highest_x, problem.particles.x[p][0]);
+      lowest_y = std::min(lowest_y, problem.particles.x[p][1]);
+      highest_y = std::max(highest_y, problem.particles.x[p][1]);
+    }
+    // A grain cut by the window has particles within one particle spacing (5 um) of an edge.
+    if (lowest_x > 5e-6 && highest_x < 995e-6 && lowest_y > 5e-6 && highest_y < 745e-6) ++whole;
+  }
+  EXPECT_GE(whole, 40u);
+  EXPECT_TRUE(problem.thermal.active());
+  ASSERT_GE(problem.stop.platen, 0);
+  const auto& platen = problem.walls.at(static_cast<std::size_t>(problem.stop.platen));
+  EXPECT_EQ(platen.velocity.velocity(0.0).norm(), 0.0);
+  EXPECT_GE(problem.stop.platen_displacement, 0.1 * 750e-6 - 1e-12);
+  EXPECT_GE(platen.velocity.displacement(problem.stop.end_time).norm(),
+            problem.stop.platen_displacement);
+}
+
 TEST(DemoCommand, RefusesNonEmptyDirectoryBeforeSimulating) {
   const fs::path dir = fresh_directory("demo_refuse");
   const fs::path out = dir / "out";
