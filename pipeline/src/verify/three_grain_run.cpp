@@ -140,6 +140,7 @@ ThreeGrainRun run_three_grain(const ThreeGrainRunSpec& spec) {
   run.input_energy = last.totals.initial_energy + last.totals.wall_work + last.totals.gravity_work +
                      last.totals.load_work;
   run.balance_error = last.balance_error;
+  run.totals = last.totals;
   return run;
 }
 

@@ -7,6 +7,7 @@
 
 #include "fragmpm/analysis/frame_fragments.hpp"
 #include "fragmpm/mpm/particles.hpp"
+#include "fragmpm/mpm/series.hpp"
 #include "fragmpm/pipeline/verify_three_grain.hpp"
 #include "verify_run.hpp"
 
@@ -35,8 +36,9 @@ struct ThreeGrainRun {
   int top_body = 0;                     ///< body id of the highest grain
   bool thermal = false;
   std::vector<double> curve_displacement, curve_force;  ///< top platen [m], |F_y| [N/m]
-  double input_energy = 0.0;   ///< initial energy + wall work at the end [J/m]
-  double balance_error = 0.0;  ///< unexplained energy at the end [J/m]
+  double input_energy = 0.0;       ///< initial energy + wall work at the end [J/m]
+  double balance_error = 0.0;      ///< unexplained energy at the end [J/m]
+  mpm::EnergyAccumulators totals;  ///< the booked energies at the end [J/m]
   TimedRun timing;
   long long particles = 0;
 };
