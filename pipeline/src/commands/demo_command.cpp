@@ -7,15 +7,14 @@
 #include <fmt/format.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <memory>
-#include <vector>
 
 #include "fragmpm/mpm/run_file.hpp"
 #include "fragmpm/pipeline/commands.hpp"
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/pipeline_job.hpp"
+#include "fragmpm/pipeline/source_file.hpp"
 
 namespace fragmpm::pipeline {
 
@@ -28,30 +27,6 @@ constexpr const char* small_demo_scene = "demo/sandstone-crush.toml";
 constexpr const char* demo_image = "images/miocene_sandstone_pack.png";
 constexpr const char* small_demo_image = "images/miocene_sandstone_window.png";
 
-/// The demo image, or PipelineError listing where it was looked for.
-std::string find_demo_image(const char* image) {
-  std::vector<fs::path> roots;
-  if (const char* env = std::getenv("FRAGMPM_SOURCE_DIR"); env && *env) roots.emplace_back(env);
-  std::error_code ec;
-  auto add_ancestors = [&](fs::path p) {
-    for (; !p.empty(); p = p.parent_path()) {
-      roots.push_back(p);
-      if (p == p.root_path()) break;
-    }
-  };
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) add_ancestors(exe.parent_path());
-  const fs::path cwd = fs::current_path(ec);
-  if (!ec) add_ancestors(cwd);
-  for (const fs::path& root : roots)
-    if (fs::is_regular_file(root / image, ec)) return (root / image).string();
-  throw PipelineError(
-      fmt::format("cannot find {} (the demo's micrograph): looked under $FRAGMPM_SOURCE_DIR, the "
-                  "folders above the executable and above the working directory; set "
-                  "FRAGMPM_SOURCE_DIR to the FragMPM source tree",
-                  image));
-}
-
 struct DemoArguments {
   std::string output = "fragmpm-demo";
   bool overwrite = false;
@@ -63,7 +38,7 @@ struct DemoArguments {
 int execute(const DemoArguments& a) {
   try {
     PipelineOptions o;
-    o.image = find_demo_image(a.small ? small_demo_image : demo_image);
+    o.image = find_source_file(a.small ? small_demo_image : demo_image, "the demo's micrograph");
     const char* scene = a.small ? small_demo_scene : demo_scene;
     o.scene_text = embedded_scene(scene);
     o.scene_path = std::string("scenes/") + scene;

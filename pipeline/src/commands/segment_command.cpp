@@ -14,6 +14,7 @@
 
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/pipeline/commands.hpp"
+#include "fragmpm/pipeline/grain_column.hpp"
 #include "fragmpm/pipeline/segment.hpp"
 #include "fragmpm/pipeline/segment_file.hpp"
 #include "fragmpm/pipeline/segment_particles.hpp"
@@ -58,6 +59,9 @@ struct SegmentArguments {
   int particles_per_cell = 2;
   std::vector<std::string> densities{"2650 kg/m3"};
   bool overwrite = false;
+  std::vector<int> stack;  ///< grain labels to stack into a column, bottom first
+  std::string stack_area;  ///< total grain area of the column
+  int stack_margin = 2;    ///< background pixels around the column
 };
 
 cv::Rect parse_crop(const std::string& text) {
@@ -145,14 +149,16 @@ std::string options_text(const SegmentArguments& a) {
       "max_hole_area = {}\nfill_holes = {}\nsplit = {}\nmarker_spacing = {}\nneck_ratio = {}\n"
       "grain_classes = {}\nboundary_classes = {}\nboundary_to = {}\nmin_area = {}\ndrop_border = "
       "{}\n"
-      "grow = {}\nphase_bands = {}\ncell_size = {}\nparticles_per_cell = {}\ndensities = {}\n",
+      "grow = {}\nphase_bands = {}\ncell_size = {}\nparticles_per_cell = {}\ndensities = {}\n"
+      "stack = {}\nstack_area = {}\nstack_margin = {}\n",
       a.pixel_size, a.crop.empty() ? "none" : a.crop, a.input, a.invert, a.denoise,
       a.denoise_radius, a.gaps, a.equalize, a.threshold,
       a.level ? fmt::format(" (level {})", *a.level) : "", a.block, a.offset, a.open, a.close,
       a.max_hole_area, !a.no_fill_holes, !a.no_split, a.marker_spacing, a.neck_ratio,
       fmt::join(a.grain_classes, ","), fmt::join(a.boundary_classes, ","), a.boundary_to,
       a.min_area, a.drop_border, a.grow, fmt::join(a.phase_bands, ","), a.cell_size,
-      a.particles_per_cell, fmt::join(a.densities, ","));
+      a.particles_per_cell, fmt::join(a.densities, ","), fmt::join(a.stack, ","),
+      a.stack.empty() ? "none" : a.stack_area, a.stack_margin);
   return t;
 }
 
@@ -194,7 +200,51 @@ int execute(const SegmentArguments& a) {
                       "density, or one per phase",
                       a.densities.size(), phases, options.phase_bands.size()));
 
-    const Segmentation s = segment(options);
+    std::optional<double> stack_area;
+    if (!a.stack.empty()) {
+      if (a.stack_area.empty())
+        throw SegmentInputError("--stack needs --stack-area (the column's total grain area)");
+      try {
+        stack_area = parse_quantity(a.stack_area, QuantityKind::area);
+      } catch (const UnitError& e) {
+        throw SegmentInputError(fmt::format("--stack-area '{}': {}", a.stack_area, e.what()));
+      }
+      if (!(*stack_area > 0.0))
+        throw SegmentInputError(
+            fmt::format("--stack-area must be a positive area, got '{}'", a.stack_area));
+      if (a.stack_margin < 0)
+        throw SegmentInputError(
+            fmt::format("--stack-margin must be >= 0 pixels, got {}", a.stack_margin));
+    } else if (!a.stack_area.empty()) {
+      throw SegmentInputError("--stack-area needs --stack (the grain labels to stack)");
+    }
+
+    const Segmentation segmented = segment(options);
+    // With --stack the chosen grains are cut out, stacked into a column and rescaled
+    // (grain_column.hpp); the column is then read back as a label image so that the grain file
+    // describes the column.
+    const Segmentation s = [&] {
+      if (a.stack.empty()) return segmented;
+      for (int label : a.stack)
+        if (label < 1 || label > static_cast<int>(segmented.table.grains.size()))
+          throw SegmentInputError(fmt::format(
+              "--stack: grain {} does not exist; the image has grains 1 … {} (see --preview)",
+              label, segmented.table.grains.size()));
+      GrainColumn column;
+      try {
+        column = stack_grains(segmented.table.labels, a.stack, *stack_area, a.stack_margin);
+      } catch (const std::invalid_argument& e) {
+        throw SegmentInputError(fmt::format("--stack: {}", e.what()));
+      }
+      SegmentOptions stacked;
+      stacked.image_path =
+          fmt::format("{} (grains {} stacked)", options.image_path, fmt::join(a.stack, ","));
+      stacked.pixel_size = column.pixel_size;
+      stacked.input = InputKind::labels;
+      stacked.min_area = 1;
+      stacked.split.enabled = false;
+      return segment(column.labels, stacked);
+    }();
 
     ParticleSampling sampling;
     sampling.particles_per_cell = a.particles_per_cell;
@@ -322,6 +372,14 @@ void add_segment_command(CLI::App& app, CommandResult& result) {
       ->delimiter(',')
       ->capture_default_str();
   c->add_flag("--overwrite", a->overwrite, "Replace an existing grain file");
+  c->add_option("--stack", a->stack,
+                "Grain labels (as in --preview) to stack into a touching column, bottom first; "
+                "the grain file then holds the column")
+      ->delimiter(',');
+  c->add_option("--stack-area", a->stack_area,
+                "Total grain area of the stacked column, e.g. \"94 mm2\" (sets the pixel size)");
+  c->add_option("--stack-margin", a->stack_margin, "Background pixels around the stacked column")
+      ->capture_default_str();
   c->callback([a, &result] { result.exit_code = execute(*a); });
 }
 

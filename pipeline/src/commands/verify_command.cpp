@@ -6,8 +6,10 @@
 #include <stdexcept>
 
 #include "fragmpm/pipeline/commands.hpp"
+#include "fragmpm/pipeline/pipeline_job.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/verify.hpp"
+#include "fragmpm/pipeline/verify_three_grain.hpp"
 
 namespace fragmpm::pipeline {
 
@@ -49,6 +51,10 @@ const std::vector<VerifyCase>& verify_cases() {
        "P3 disk squish: peak contact temperature and disk speed, isothermal / coupled / softening "
        "friction",
        verify_disk_squish},
+      {"three-grain",
+       "P6 three grains crushed at 8, 16 and 80 m/s, coupled and isothermal: fragment size and "
+       "roundness of the top grain, platen force, temperature, energy balance",
+       verify_three_grain},
   };
   return cases;
 }
@@ -126,6 +132,9 @@ int execute(const VerifyArguments& args) {
       if (!report_case(args.output, c->name, c->run(options))) missed.push_back(c->name);
     } catch (const SceneError& e) {
       std::fprintf(stderr, "fragmpm verify %s: scene error: %s\n", c->name.c_str(), e.what());
+      return 2;
+    } catch (const PipelineError& e) {  // a data file of the source tree is missing
+      std::fprintf(stderr, "fragmpm verify %s: %s\n", c->name.c_str(), e.what());
       return 2;
     } catch (const std::runtime_error& e) {
       std::fprintf(stderr, "fragmpm verify %s: %s\n", c->name.c_str(), e.what());

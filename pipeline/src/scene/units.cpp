@@ -118,6 +118,8 @@ Dims kind_dims(QuantityKind k) {
       return dims(1, 1, -3, -1);
     case QuantityKind::expansion:
       return dims(0, 0, 0, -1);
+    case QuantityKind::area:
+      return dims(2, 0, 0);
     case QuantityKind::volume:
       return dims(3, 0, 0);
     case QuantityKind::inverse_velocity:
@@ -132,26 +134,18 @@ Dims kind_dims(QuantityKind k) {
   return {};
 }
 
-constexpr std::array<QuantityKind, 20> kAllKinds = {QuantityKind::length,
-                                                    QuantityKind::time,
-                                                    QuantityKind::mass,
-                                                    QuantityKind::density,
-                                                    QuantityKind::pressure,
-                                                    QuantityKind::velocity,
-                                                    QuantityKind::acceleration,
-                                                    QuantityKind::frequency,
-                                                    QuantityKind::angle,
-                                                    QuantityKind::angular_velocity,
-                                                    QuantityKind::temperature,
-                                                    QuantityKind::energy_per_area,
-                                                    QuantityKind::specific_heat,
-                                                    QuantityKind::conductivity,
-                                                    QuantityKind::expansion,
-                                                    QuantityKind::volume,
-                                                    QuantityKind::inverse_velocity,
-                                                    QuantityKind::heat_flux,
-                                                    QuantityKind::film_coefficient,
-                                                    QuantityKind::stiffness};
+constexpr std::array<QuantityKind, 21> kAllKinds = {
+    QuantityKind::length,        QuantityKind::time,
+    QuantityKind::mass,          QuantityKind::density,
+    QuantityKind::pressure,      QuantityKind::velocity,
+    QuantityKind::acceleration,  QuantityKind::frequency,
+    QuantityKind::angle,         QuantityKind::angular_velocity,
+    QuantityKind::temperature,   QuantityKind::energy_per_area,
+    QuantityKind::specific_heat, QuantityKind::conductivity,
+    QuantityKind::expansion,     QuantityKind::area,
+    QuantityKind::volume,        QuantityKind::inverse_velocity,
+    QuantityKind::heat_flux,     QuantityKind::film_coefficient,
+    QuantityKind::stiffness};
 
 /// "a length" / "kg m^-1 s^-2" — how a found unit is described in an error.
 std::string describe_dims(const Dims& d) {
@@ -207,6 +201,8 @@ std::string_view example(QuantityKind kind) {
       return "1.5 W/(m K)";
     case QuantityKind::expansion:
       return "8e-6 1/K";
+    case QuantityKind::area:
+      return "94 mm2";
     case QuantityKind::volume:
       return "1 mm3";
     case QuantityKind::inverse_velocity:
@@ -419,6 +415,8 @@ std::string_view kind_name(QuantityKind kind) {
       return "thermal conductivity";
     case QuantityKind::expansion:
       return "thermal expansion coefficient";
+    case QuantityKind::area:
+      return "area";
     case QuantityKind::volume:
       return "volume";
     case QuantityKind::inverse_velocity:
@@ -465,6 +463,8 @@ std::string_view si_unit(QuantityKind kind) {
       return "W/(m K)";
     case QuantityKind::expansion:
       return "1/K";
+    case QuantityKind::area:
+      return "m2";
     case QuantityKind::volume:
       return "m3";
     case QuantityKind::inverse_velocity:

@@ -31,6 +31,7 @@ enum class QuantityKind {
   specific_heat,     ///< J/(kg K)
   conductivity,      ///< W/(m K)
   expansion,         ///< 1/K
+  area,              ///< m2 (total grain area of a stacked column)
   volume,            ///< m3 (Weibull reference volume)
   inverse_velocity,  ///< s/m (slope of velocity-dependent friction)
   heat_flux,         ///< W/m2 (thermal boundary flux)
