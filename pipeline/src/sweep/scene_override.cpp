@@ -28,7 +28,8 @@ std::vector<Step> parse_path(std::string_view path) {
     while (j < path.size() && path[j] != '.' && path[j] != '[') ++j;
     if (j == i) bad("a name is missing at character " + std::to_string(i + 1));
     const std::string name(path.substr(i, j - i));
-    so_far += (so_far.empty() ? "" : ".") + name;
+    if (!so_far.empty()) so_far += '.';
+    so_far += name;
     steps.push_back({name, 0, so_far});
     i = j;
     while (i < path.size() && path[i] == '[') {
@@ -42,7 +43,9 @@ std::vector<Step> parse_path(std::string_view path) {
           bad("index '" + std::string(digits) + "'");
         index = index * 10 + static_cast<std::size_t>(c - '0');
       }
-      so_far += "[" + std::string(digits) + "]";
+      so_far += '[';
+      so_far.append(digits);
+      so_far += ']';
       steps.push_back({"", index, so_far});
       i = close + 1;
     }

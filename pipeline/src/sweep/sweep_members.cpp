@@ -114,12 +114,17 @@ void write_member_status(const std::string& member_dir, const MemberStatus& s) {
 
 void write_manifest(const SweepSpec& spec, const std::string& dir) {
   std::string text = "member";
-  for (const SweepAxis& a : spec.axes) text += "," + csv_field(a.key);
+  for (const SweepAxis& a : spec.axes) {
+    text += ',';
+    text += csv_field(a.key);
+  }
   text += ",status,exit_code,wall_s,steps,balance_error_J_per_m\n";
   for (const SweepMember& m : spec.members) {
     text += m.name;
-    for (std::size_t a = 0; a < spec.axes.size(); ++a)
-      text += "," + csv_field(spec.axes[a].values[m.choice[a]]);
+    for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+      text += ',';
+      text += csv_field(spec.axes[a].values[m.choice[a]]);
+    }
     const auto s = read_member_status((fs::path(dir) / m.name).string());
     if (s)
       text +=

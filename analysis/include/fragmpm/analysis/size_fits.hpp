@@ -2,7 +2,7 @@
 // Maximum-likelihood fits of fragment-size distributions with confidence intervals
 // (docs/design.md "Pooled statistics"):
 //
-//   Rosin-Rammler / Weibull   P(d) = 1 − exp(−(d/d₀)ⁿ), every sample, fitted range [min, max];
+//   Rosin-Rammler / Weibull   P(d) = 1 − exp(−(d/d₀)ⁿ) [RR33], every sample, range [min, max];
 //   power law                 N(>d) ∝ d^(−D) for d ≥ d_min (pdf D d_min^D d^(−D−1)), with d_min
 //                             chosen by the Kolmogorov-Smirnov criterion of Clauset, Shalizi and
 //                             Newman [CSN09]; optionally truncated above at d_max.
