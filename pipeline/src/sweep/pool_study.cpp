@@ -198,10 +198,9 @@ std::vector<std::string> pool_sweep(const PoolOptions& o, std::FILE* log) {
           const std::string key = fmt::format("cdf_{}_{}", Q.name, by_mass ? "mass" : "number");
           an::PlotSpec& spec = frame_plots[k][key];
           if (spec.title.empty()) {
-            spec.title = fmt::format(
-                "pooled {} CDF ({}), frame {} ({}), 95 % member bootstrap",
-                Q.name == std::string("roundness") ? "roundness" : "equivalent diameter",
-                by_mass ? "by mass" : "by number", k, frame_label);
+            spec.title = fmt::format("{} by {}, frame {} ({}), dashed: 95 % band",
+                                     Q.name == std::string("roundness") ? "roundness" : "size",
+                                     by_mass ? "mass" : "number", k, frame_label);
             spec.x_label = Q.log ? "equivalent diameter [um]" : "roundness";
             spec.y_label = by_mass ? "mass fraction" : "number fraction";
             spec.log_x = Q.log;
@@ -211,9 +210,11 @@ std::vector<std::string> pool_sweep(const PoolOptions& o, std::FILE* log) {
           const auto& mid = by_mass ? band.mass : band.number;
           const auto& lo = by_mass ? band.mass_low : band.number_low;
           const auto& hi = by_mass ? band.mass_high : band.number_high;
-          spec.series.push_back({g.label, xs, mid, false});
-          spec.series.push_back({"", xs, lo, false});
-          spec.series.push_back({"", xs, hi, false});
+          // The band's edges dashed, in the group's colour.
+          const int colour = static_cast<int>(gi);
+          spec.series.push_back({g.label, xs, mid, false, true, false, colour});
+          spec.series.push_back({"", xs, lo, false, true, true, colour});
+          spec.series.push_back({"", xs, hi, false, true, true, colour});
         }
       }
 
@@ -391,11 +392,11 @@ std::vector<std::string> pool_sweep(const PoolOptions& o, std::FILE* log) {
         plot(spec, figures / fmt::format("{}_frame{:02d}.png", name, k), files, log);
   {
     an::PlotSpec spec;
-    spec.title = "Hardin's relative breakage against input work (every member and frame)";
+    spec.title = "Hardin's B_r against wall work, every member and frame";
     spec.x_label = "wall work [J/m]";
     spec.y_label = "B_r";
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
-      an::LineSeries s{groups[gi].label, {}, {}, true};
+      an::LineSeries s{groups[gi].label, {}, {}, true, false};
       for (const BreakageRow& b : breakage)
         if (b.group == gi && std::isfinite(b.br)) {
           s.x.push_back(b.wall_work);
@@ -433,17 +434,25 @@ std::vector<std::string> pool_sweep(const PoolOptions& o, std::FILE* log) {
       });
   for (const Param& p : params) {
     an::PlotSpec spec;
-    spec.title = fmt::format("{} of the last analysed frame, 95 % interval", p.label);
+    spec.title = fmt::format("{}, last frame, with 95 % interval", p.label);
     spec.x_label = numeric ? keys.front() + " (last number of the value)" : "group";
     spec.y_label = p.label;
-    an::LineSeries mid{"estimate", {}, {}, true}, lo{"95 % low", {}, {}, true},
-        hi{"95 % high", {}, {}, true};
-    for (const FitRow& r : fits) {
-      if (r.ordinal != last) continue;
+    an::LineSeries mid{"estimate", {}, {}, true, true, false, 0},
+        lo{"95 % interval", {}, {}, true, true, true, 1}, hi{"", {}, {}, true, true, true, 1};
+    // In order of the varied value, so that the lines join neighbours.
+    std::vector<const FitRow*> order;
+    for (const FitRow& r : fits)
+      if (r.ordinal == last) order.push_back(&r);
+    auto x_of = [&](const FitRow& r) {
+      return numeric ? last_number(groups[r.group].values.front().second) : double(r.group + 1);
+    };
+    std::stable_sort(order.begin(), order.end(),
+                     [&](const FitRow* a, const FitRow* b) { return x_of(*a) < x_of(*b); });
+    for (const FitRow* rp : order) {
+      const FitRow& r = *rp;
       const bool ok = std::string(p.file).find("power") != std::string::npos ? r.pl_ok : r.rr_ok;
       if (!ok) continue;
-      const double x =
-          numeric ? last_number(groups[r.group].values.front().second) : double(r.group + 1);
+      const double x = x_of(r);
       mid.x.push_back(x);
       mid.y.push_back(p.value(r));
       lo.x.push_back(x);
