@@ -50,9 +50,8 @@ int run_one_member(const SweepSpec& spec, const SweepArguments& a, int threads) 
   }
   const SweepMember& m = spec.members[static_cast<std::size_t>(a.member - 1)];
   const fs::path dir = fs::path(a.dir) / m.name;
-  const auto before = read_member_status(dir.string());
   int code = 0;
-  if (before && before->status == "done") {
+  if (member_finished(dir.string())) {
     std::fprintf(stderr, "fragmpm sweep: member %s is finished; skipped\n", m.name.c_str());
   } else {
     const MemberStatus s = run_member({dir.string(), self_executable(), threads, spec.analysis});

@@ -25,8 +25,7 @@ double now_seconds() {
 std::vector<std::size_t> unfinished_members(const SweepSpec& spec, const std::string& dir) {
   std::vector<std::size_t> todo;
   for (std::size_t m = 0; m < spec.members.size(); ++m) {
-    const auto s = read_member_status((fs::path(dir) / spec.members[m].name).string());
-    if (!s || s->status != "done") todo.push_back(m);
+    if (!member_finished((fs::path(dir) / spec.members[m].name).string())) todo.push_back(m);
   }
   return todo;
 }
@@ -54,8 +53,8 @@ std::string SweepProgress::line(std::size_t running) const {
   return text;
 }
 
-void SweepProgress::member_finished(const std::string& name, const std::string& status,
-                                    double wall_seconds, std::size_t running) {
+void SweepProgress::report(const std::string& name, const std::string& status, double wall_seconds,
+                           std::size_t running) {
   if (status == "done") ++done_;
   if (status == "failed") ++failed_;
   if (status == "done" || status == "failed") ++finished_now_;
@@ -106,7 +105,7 @@ SweepTally run_sweep_local(const SweepSpec& spec, const std::vector<std::size_t>
       if (s.status == "done") ++tally.done;
       if (s.status == "failed") ++tally.failed;
       if (s.status == "interrupted") ++tally.interrupted;
-      progress.member_finished(member.name, s.status, s.wall_seconds, running);
+      progress.report(member.name, s.status, s.wall_seconds, running);
       changed.notify_all();
     }
   };

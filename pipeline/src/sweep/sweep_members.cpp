@@ -101,6 +101,14 @@ std::optional<MemberStatus> read_member_status(const std::string& member_dir) {
   return s;
 }
 
+bool member_finished(const std::string& member_dir) {
+  const auto s = read_member_status(member_dir);
+  std::error_code ec;
+  const fs::path dir(member_dir);
+  return s && s->status == "done" && fs::is_regular_file(dir / "run.h5", ec) &&
+         fs::is_regular_file(dir / "fragments" / "fragment_series.csv", ec);
+}
+
 void write_member_status(const std::string& member_dir, const MemberStatus& s) {
   write_atomically(
       fs::path(member_dir) / "status.txt",
@@ -172,9 +180,8 @@ void prepare_sweep_dir(const SweepSpec& spec, const std::string& dir) {
   for (const SweepMember& m : spec.members) {
     const fs::path member = fs::path(dir) / m.name;
     const fs::path scene = member / "scene.toml";
-    const auto status = read_member_status(member.string());
     std::error_code ec;
-    if (status && status->status == "done") {
+    if (member_finished(member.string())) {
       if (fs::is_regular_file(scene, ec) && slurp(scene) != m.scene_text)
         throw SceneError(spec.path, 0, "",
                          "member " + m.name + " in " + dir +

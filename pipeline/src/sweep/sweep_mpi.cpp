@@ -76,8 +76,7 @@ int coordinator(const SweepSpec& spec, const SweepRunOptions& o, int ranks) {
                                                 : "interrupted";
       if (outcome == kFailed) ++failed;
       if (outcome == kInterrupted) ++interrupted;
-      progress.member_finished(spec.members[static_cast<std::size_t>(member)].name, status, msg[2],
-                               running);
+      progress.report(spec.members[static_cast<std::size_t>(member)].name, status, msg[2], running);
     }
     int assign = -1;
     if (next < todo.size() && !stop_requested() && outcome != kInterrupted) {

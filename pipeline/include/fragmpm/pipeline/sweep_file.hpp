@@ -40,9 +40,10 @@ struct SweepAnalysis {
 };
 
 struct SweepSpec {
-  std::string path;             ///< the sweep file
-  std::string base_scene;       ///< the base scene file
-  std::vector<SweepAxis> axes;  ///< varied keys in file order, "seed" last when seeds are given
+  std::string path;        ///< the sweep file
+  std::string base_scene;  ///< the base scene file
+  /// Varied keys in key order ([vary] is a TOML table; toml++ keeps it sorted), "seed" last.
+  std::vector<SweepAxis> axes;
   std::vector<SweepMember> members;  ///< the grid, seeds varying fastest
   SweepAnalysis analysis;
   std::string text;  ///< the sweep file's text

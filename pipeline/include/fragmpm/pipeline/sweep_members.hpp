@@ -32,6 +32,9 @@ struct MemberStatus {
 /// The member's status.txt, or nullopt when it has none (never started, or interrupted).
 std::optional<MemberStatus> read_member_status(const std::string& member_dir);
 
+/// Finished: status.txt says done and the run file and the fragment series it vouches for exist.
+bool member_finished(const std::string& member_dir);
+
 /// Writes status.txt through a temporary file and a rename, so that it is whole or absent.
 void write_member_status(const std::string& member_dir, const MemberStatus& status);
 

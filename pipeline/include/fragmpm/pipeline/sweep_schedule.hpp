@@ -35,8 +35,8 @@ SweepTally run_sweep_local(const SweepSpec& spec, const std::vector<std::size_t>
 class SweepProgress {
  public:
   SweepProgress(std::size_t total, std::size_t already_done, int workers, bool enabled);
-  void member_finished(const std::string& name, const std::string& status, double wall_seconds,
-                       std::size_t running);
+  void report(const std::string& name, const std::string& status, double wall_seconds,
+              std::size_t running);
   void refresh(std::size_t running);
   ~SweepProgress();
 
