@@ -17,6 +17,7 @@
 
 #include "../support/read_text.hpp"
 #include "fragmpm/pipeline/scene_override.hpp"
+#include "fragmpm/pipeline/sweep_file.hpp"
 #include "fragmpm/pipeline/sweep_members.hpp"
 
 namespace fs = std::filesystem;
@@ -199,8 +200,10 @@ TEST(SweepCommand, JobsAndMpiRanksWriteBitIdenticalMemberRunFiles) {
   }
 }
 
-TEST(SweepCommand, StoppedSweepResumesWithoutTouchingFinishedMembers) {
-  const fs::path dir = fresh_directory("resume");
+/// Starts a 4-member sweep, sends `signal` once the first member is finished, reruns it, and
+/// checks that the finished members' files are untouched and every member ends done.
+static void stop_and_resume(int signal, const std::string& name) {
+  const fs::path dir = fresh_directory(name);
   const fs::path sweep = four_member_sweep(dir, "6 us");
   const fs::path out = dir / "out";
   const pid_t pid = fork();
@@ -216,11 +219,18 @@ TEST(SweepCommand, StoppedSweepResumesWithoutTouchingFinishedMembers) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!fs::exists(out / "0001" / "status.txt") && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  kill(pid, SIGTERM);
+  kill(pid, signal);
   int status = 0;
   waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130) << read_text(dir / "log_first");
+  if (signal == SIGTERM) {
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130) << read_text(dir / "log_first");
+  } else {
+    ASSERT_TRUE(WIFSIGNALED(status));
+    // A killed sweep cannot write its manifest; its members die with it (no orphan writes on).
+    fragmpm::pipeline::write_manifest(
+        fragmpm::pipeline::read_sweep(sweep.string(), out.string(), false), out.string());
+  }
   const auto first = fragmpm::pipeline::read_manifest(out.string());
   std::vector<std::string> finished;
   for (const auto& r : first)
@@ -247,6 +257,14 @@ TEST(SweepCommand, StoppedSweepResumesWithoutTouchingFinishedMembers) {
     EXPECT_EQ(checksum(out / file), sum.first) << file;
     EXPECT_EQ(fs::last_write_time(out / file), sum.second) << file;
   }
+}
+
+TEST(SweepCommand, StoppedSweepResumesWithoutTouchingFinishedMembers) {
+  stop_and_resume(SIGTERM, "resume_term");
+}
+
+TEST(SweepCommand, KilledSweepResumesWithoutTouchingFinishedMembers) {
+  stop_and_resume(SIGKILL, "resume_kill");
 }
 
 TEST(SweepCommand, FailingMemberIsRecordedAndTheOthersRun) {

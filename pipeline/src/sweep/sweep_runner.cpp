@@ -2,6 +2,7 @@
 #include "fragmpm/pipeline/sweep_runner.hpp"
 
 #include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -51,10 +52,16 @@ int run_child(const std::string& dir, const std::vector<std::string>& argv) {
       close(fd);
     }
   }
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) return 1;
   if (pid == 0) {
-    // Child: only async-signal-safe calls until execv.
+    // Child: only async-signal-safe calls until execv. A sweep killed outright (SIGKILL, which it
+    // cannot pass on) takes its members with it, so that no orphan writes into a member folder
+    // that the next sweep is running again. (The signal follows the forking thread, which waits
+    // for this child.)
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(128 + SIGTERM);  // the sweep died before prctl
     if (chdir(dir.c_str()) != 0) _exit(127);
     const int fd = open("log.txt", O_WRONLY | O_CREAT | O_APPEND, 0644);
     if (fd >= 0) {
