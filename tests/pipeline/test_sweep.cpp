@@ -190,6 +190,10 @@ TEST(SweepCommand, JobsAndMpiRanksWriteBitIdenticalMemberRunFiles) {
       0)
       << read_text(dir / "log_mpi");
 #else
+  // Without MPI, --mpi says how to enable it.
+  EXPECT_EQ(
+      run_fragmpm("sweep " + sweep.string() + " -o " + b.string() + " --mpi", dir / "log_mpi"), 2);
+  EXPECT_NE(read_text(dir / "log_mpi").find("built without MPI"), std::string::npos);
   GTEST_SKIP() << "built without MPI: only the --jobs half ran";
 #endif
   for (const char* m : {"0001", "0002", "0003", "0004"}) {
