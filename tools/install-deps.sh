@@ -6,6 +6,7 @@ packages=(
   libeigen3-dev libhdf5-dev hdf5-tools libopencv-dev libcgal-dev libosmesa6-dev
   libgtest-dev libtomlplusplus-dev libcli11-dev libfmt-dev libomp-dev
   libxdmf-dev libxml2-dev libboost-dev
+  libopenmpi-dev openmpi-bin
   clang-format fonts-dejavu-core
 )
 missing=()

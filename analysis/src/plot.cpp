@@ -214,10 +214,11 @@ cv::Mat render_line_plot(const PlotSpec& spec) {
     pts.reserve(ser.x.size());
     for (std::size_t k = 0; k < ser.x.size(); ++k)
       pts.push_back({f.to_px(ser.x[k]), f.to_py(ser.y[k])});
-    const Rgb c = series_colour(i);
-    const bool dashed = i >= 10;  // colours repeat after ten series; dashes keep them apart
-    draw_polyline(pts, line_width, c, dashed);
-    if (ser.markers || pts.size() == 1) draw_markers(pts, std::max(4.0, 9.0 * s), c);
+    const std::size_t ci = ser.colour >= 0 ? static_cast<std::size_t>(ser.colour) : i;
+    const Rgb c = series_colour(ci);
+    const bool dashed = ser.dashed || ci >= 10;  // colours repeat after ten: dashes tell them apart
+    if (ser.line) draw_polyline(pts, line_width, c, dashed);
+    if (ser.markers || !ser.line || pts.size() == 1) draw_markers(pts, std::max(4.0, 9.0 * s), c);
   }
   clip_off();
   // Axis frame just outside the plot area, and outward ticks on the left and bottom axes.
@@ -248,9 +249,11 @@ cv::Mat render_line_plot(const PlotSpec& spec) {
       const double cy = box.y0 + 0.6 * st.pad + (r + 0.5) * box.row_height;
       const double x0 = box.x0 + st.pad;
       std::vector<PixelPoint> pts{{x0, cy}, {x0 + box.swatch, cy}};
-      draw_polyline(pts, line_width, series_colour(i), i >= 10);
-      if (spec.series[i].markers)
-        draw_markers({{x0 + 0.5 * box.swatch, cy}}, std::max(4.0, 9.0 * s), series_colour(i));
+      const LineSeries& ser = spec.series[i];
+      const std::size_t ci = ser.colour >= 0 ? static_cast<std::size_t>(ser.colour) : i;
+      if (ser.line) draw_polyline(pts, line_width, series_colour(ci), ser.dashed || ci >= 10);
+      if (ser.markers || !ser.line)
+        draw_markers({{x0 + 0.5 * box.swatch, cy}}, std::max(4.0, 9.0 * s), series_colour(ci));
     }
   }
   cv::Mat image = gl.read_bgr();

@@ -354,11 +354,21 @@ Group Group::open_group(const std::string& path) const {
 
 Group Group::require_group(const std::string& path) const {
   if (exists(path)) return open_group(path);
-  const Temp links(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
-  H5Pset_create_intermediate_group(links.get(), 1);
-  const hid_t group = H5Gcreate2(id(), path.c_str(), links.get(), H5P_DEFAULT, H5P_DEFAULT);
+  // One level at a time, each with the creation list below: groups HDF5 creates as intermediates
+  // would get the default list, with modification times (see File::create).
+  const std::size_t slash = path.find_last_of('/');
+  if (slash != std::string::npos && slash > 0) (void)require_group(path.substr(0, slash));
+  const Temp create(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
+  H5Pset_obj_track_times(create.get(), 0);  // see File::create
+  const hid_t group = H5Gcreate2(id(), path.c_str(), H5P_DEFAULT, create.get(), H5P_DEFAULT);
   if (group < 0) fail(*this, "cannot create group '" + path + "'");
   return Group(group, file_path(), join_path(object_path(), path));
+}
+
+/// Creates the parent groups of a dataset path ("a/b/name" → "a/b") with require_group.
+static void require_parent(const Group& g, const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  if (slash != std::string::npos && slash > 0) (void)g.require_group(path.substr(0, slash));
 }
 
 std::vector<std::string> Group::children() const {
@@ -420,10 +430,13 @@ Dataset Group::write(const std::string& path, const T* data, std::size_t count,
                        ? H5Screate(H5S_SCALAR)
                        : H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr),
                    H5Sclose);
+  require_parent(*this, path);
   const Temp links(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
   H5Pset_create_intermediate_group(links.get(), 1);
+  const Temp create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  H5Pset_obj_track_times(create.get(), 0);  // see File::create
   const hid_t dataset = H5Dcreate2(id(), path.c_str(), file_type<T>(), space.get(), links.get(),
-                                   H5P_DEFAULT, H5P_DEFAULT);
+                                   create.get(), H5P_DEFAULT);
   if (dataset < 0) fail(*this, "cannot create dataset '" + path + "' " + dims_text(dims));
   Dataset result(dataset, file_path(), full);
   if (count > 0 && H5Dwrite(dataset, memory_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
@@ -451,6 +464,8 @@ Dataset Group::create_extendible(const std::string& path, const Dims& row_dims,
                    H5Sclose);
   const Temp create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   H5Pset_chunk(create.get(), static_cast<int>(chunk.size()), chunk.data());
+  H5Pset_obj_track_times(create.get(), 0);  // see File::create
+  require_parent(*this, path);
   const Temp links(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
   H5Pset_create_intermediate_group(links.get(), 1);
   const hid_t dataset = H5Dcreate2(id(), path.c_str(), file_type<T>(), space.get(), links.get(),
@@ -529,8 +544,12 @@ File File::create(const std::string& path, bool overwrite) {
   // The HDF5 1.8 file format: readable by every current tool (h5py, MATLAB, ParaView), and it
   // allows attributes larger than 64 KiB (dense attribute storage) for long scene texts.
   H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_V18);
+  // No modification times in object headers: two runs of one scene then write the same bytes, so
+  // that a sweep's members can be compared file for file (`cmp`) across schedulers and reruns.
+  const Temp create(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  H5Pset_obj_track_times(create.get(), 0);
   const hid_t file =
-      H5Fcreate(path.c_str(), overwrite ? H5F_ACC_TRUNC : H5F_ACC_EXCL, H5P_DEFAULT, access.get());
+      H5Fcreate(path.c_str(), overwrite ? H5F_ACC_TRUNC : H5F_ACC_EXCL, create.get(), access.get());
   if (file < 0) {
     const std::string detail = hdf5_detail();
     throw RunFileError(path + ": cannot create the file" +

@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
   fragmpm::pipeline::add_analyze_command(app, result);
   fragmpm::pipeline::add_pipeline_command(app, result);
   fragmpm::pipeline::add_demo_command(app, result);
+  fragmpm::pipeline::add_sweep_command(app, result);
+  fragmpm::pipeline::add_pool_command(app, result);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -15,6 +15,9 @@ struct LineSeries {
   std::string label;         ///< legend entry; empty = not in the legend
   std::vector<double> x, y;  ///< same length, drawn in the order given
   bool markers = false;      ///< a round marker at each point
+  bool line = true;          ///< false: markers only (a scatter plot)
+  bool dashed = false;       ///< dashed line (e.g. the edges of a band around another series)
+  int colour = -1;           ///< palette index; −1 = the series' own index in the plot
 };
 
 struct PlotSpec {

@@ -18,5 +18,7 @@ void add_render_command(CLI::App& app, CommandResult& result);
 void add_analyze_command(CLI::App& app, CommandResult& result);
 void add_pipeline_command(CLI::App& app, CommandResult& result);
 void add_demo_command(CLI::App& app, CommandResult& result);
+void add_sweep_command(CLI::App& app, CommandResult& result);
+void add_pool_command(CLI::App& app, CommandResult& result);
 
 }  // namespace fragmpm::pipeline
