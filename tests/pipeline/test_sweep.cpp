@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <string>
 #include <thread>
 
@@ -341,6 +342,17 @@ seeds = "1..2"
                         "pool_figures/cdf_equivalent_diameter_number_frame01.png",
                         "pool_figures/grading_frame01.png"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
+  // report.html shows every figure it names, and names both groups.
+  const std::string page = read_text(out / "report.html");
+  const std::regex image(R"re(<img src="([^"]+)")re");
+  int images = 0;
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), image);
+       it != std::sregex_iterator(); ++it, ++images)
+    EXPECT_TRUE(fs::exists(out / (*it)[1].str())) << (*it)[1].str();
+  EXPECT_GE(images, 6);
+  EXPECT_NE(page.find("<th>group 1</th>"), std::string::npos);
+  EXPECT_NE(page.find("<th>group 2</th>"), std::string::npos);
+  EXPECT_NE(page.find(": 2 members"), std::string::npos);
   // The same seed gives the same bands (with two members per group every seed gives the same
   // percentiles, so other seeds are compared in the bootstrap unit test).
   ASSERT_EQ(run_fragmpm("pool " + out.string() + " --replicates 200 --no-figures", dir / "log2"),

@@ -76,8 +76,8 @@ int execute(const DemoArguments& a) {
 void add_demo_command(CLI::App& app, CommandResult& result) {
   auto args = std::make_shared<DemoArguments>();
   CLI::App* cmd = app.add_subcommand("demo",
-                                     "The main job on built-in data: the 51 grains of a sandstone "
-                                     "grain mask (800 x 600 um) crushed between platens with "
+                                     "The main job on built-in data: the 73 grains of a sandstone "
+                                     "grain mask (1000 x 750 um) crushed between platens with "
                                      "frictional and damage heating; segmentation preview, run "
                                      "file, fragment tables, figures, summary and report.html (the "
                                      "pipeline command). A few minutes on 2 cores");

@@ -94,7 +94,7 @@ std::string report_html(const Report& report) {
                       "below).</div>\n",
                       attention, report.checks.size());
   if (!report.summary.empty()) {
-    html += "<h2>The run</h2>\n";
+    html += "<h2>" + escape(report.summary_title) + "</h2>\n";
     rows(html, report.summary, false);
   }
   if (!report.checks.empty()) {

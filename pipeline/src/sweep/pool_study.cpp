@@ -14,9 +14,11 @@
 #include "fragmpm/analysis/figure_error.hpp"
 #include "fragmpm/analysis/grading.hpp"
 #include "fragmpm/analysis/plot.hpp"
+#include "fragmpm/analysis/si_format.hpp"
 #include "fragmpm/analysis/size_fits.hpp"
 #include "fragmpm/mpm/hdf5_io.hpp"
 #include "fragmpm/pipeline/pool.hpp"
+#include "fragmpm/pipeline/report_html.hpp"
 #include "fragmpm/pipeline/sweep_members.hpp"
 
 namespace fragmpm::pipeline {
@@ -78,6 +80,77 @@ void plot(const an::PlotSpec& spec, const fs::path& path, std::vector<std::strin
   } catch (const an::FigureError& e) {
     if (log) std::fprintf(log, "  figure %s skipped: %s\n", path.string().c_str(), e.what());
   }
+}
+
+/// Caption of a pool figure from its file name.
+std::string pool_caption(const std::string& name) {
+  static const std::vector<std::pair<std::regex, std::string>> known{
+      {std::regex(R"(^cdf_equivalent_diameter_number_frame(\d+)\.png$)"),
+       "Pooled number CDF of equivalent diameter at analysed frame $1, one colour per group, "
+       "dashed: the 95 % band from resampling members."},
+      {std::regex(R"(^cdf_equivalent_diameter_mass_frame(\d+)\.png$)"),
+       "Pooled mass CDF of equivalent diameter at analysed frame $1, with the 95 % member "
+       "bootstrap band dashed."},
+      {std::regex(R"(^cdf_roundness_number_frame(\d+)\.png$)"),
+       "Pooled number CDF of roundness at analysed frame $1, with the 95 % band dashed."},
+      {std::regex(R"(^cdf_roundness_mass_frame(\d+)\.png$)"),
+       "Pooled mass CDF of roundness at analysed frame $1, with the 95 % band dashed."},
+      {std::regex(R"(^grading_frame(\d+)\.png$)"),
+       "Grading curve (percent passing by mass, fragments and fines) at analysed frame $1."},
+      {std::regex(R"(^breakage_vs_work\.png$)"),
+       "Hardin's relative breakage B_r of every member and frame against the work the walls did."},
+      {std::regex(R"(^fit_(.*)\.png$)"),
+       "A fit parameter with its 95 % interval against the varied value, per analysed frame."},
+  };
+  for (const auto& [pattern, caption] : known)
+    if (std::regex_search(name, pattern)) return std::regex_replace(name, pattern, caption);
+  return name;
+}
+
+/// DIR/report.html: the groups, the fit table and every figure with a caption.
+std::string write_pool_report(const PoolOptions& o, const std::vector<PoolGroup>& groups,
+                              const std::vector<FitRow>& fits, const fs::path& dir,
+                              const std::vector<std::string>& files) {
+  Report report;
+  report.title = "FragMPM pool: " + dir.filename().string();
+  report.summary_title = "The study: groups of members and fits per analysed frame";
+  report.subtitle = fmt::format("{} group(s); CDF bands from {} member resamplings (seed {})",
+                                groups.size(), o.replicates, o.seed);
+  for (std::size_t gi = 0; gi < groups.size(); ++gi)
+    report.summary.push_back(
+        {fmt::format("group {}", gi + 1),
+         fmt::format("{}: {} members", groups[gi].label, groups[gi].members.size())});
+  for (const FitRow& r : fits) {
+    std::string value =
+        fmt::format("t = {}, {} fragments", an::format_si(r.time, "s", 3), r.fragments);
+    if (r.rr_ok)
+      value += fmt::format("; Rosin-Rammler d\u2080 = {} [{}, {}], n = {:.3g} [{:.3g}, {:.3g}]",
+                           an::format_si(r.rr.d0, "m", 3), an::format_si(r.rr.d0_ci.low, "m", 3),
+                           an::format_si(r.rr.d0_ci.high, "m", 3), r.rr.n, r.rr.n_ci.low,
+                           r.rr.n_ci.high);
+    if (r.pl_ok)
+      value += fmt::format("; power law D = {:.3g} [{:.3g}, {:.3g}] above {}", r.pl.exponent,
+                           r.pl.exponent_ci.low, r.pl.exponent_ci.high,
+                           an::format_si(r.pl.d_min, "m", 3));
+    if (std::isfinite(r.br_mean)) value += fmt::format("; B_r = {:.3g}", r.br_mean);
+    report.summary.push_back(
+        {fmt::format("group {}, frame {}", r.group + 1, r.ordinal), value, false});
+  }
+  ReportSection cdfs{"Pooled distributions", {}}, grading{"Grading and breakage", {}},
+      fit_figures{"Fit parameters", {}};
+  for (const std::string& file : files) {
+    const fs::path relative = fs::path(file).lexically_relative(dir);
+    if (relative.extension() != ".png") continue;
+    const std::string name = relative.filename().string();
+    ReportSection& section = name.rfind("cdf_", 0) == 0   ? cdfs
+                             : name.rfind("fit_", 0) == 0 ? fit_figures
+                                                          : grading;
+    section.figures.push_back({relative.generic_string(), pool_caption(name)});
+  }
+  report.sections = {cdfs, grading, fit_figures};
+  const std::string path = (dir / "report.html").string();
+  write_report(report, path);
+  return path;
 }
 
 }  // namespace
@@ -201,7 +274,7 @@ std::vector<std::string> pool_sweep(const PoolOptions& o, std::FILE* log) {
             spec.title = fmt::format("{} by {}, frame {} ({}), dashed: 95 % band",
                                      Q.name == std::string("roundness") ? "roundness" : "size",
                                      by_mass ? "mass" : "number", k, frame_label);
-            spec.x_label = Q.log ? "equivalent diameter [um]" : "roundness";
+            spec.x_label = Q.log ? "equivalent diameter [\u00b5m]" : "roundness";
             spec.y_label = by_mass ? "mass fraction" : "number fraction";
             spec.log_x = Q.log;
           }
@@ -237,7 +310,7 @@ std::vector<std::string> pool_sweep(const PoolOptions& o, std::FILE* log) {
         an::PlotSpec& spec = frame_plots[k]["grading"];
         if (spec.title.empty()) {
           spec.title = fmt::format("grading curves, frame {} ({})", k, frame_label);
-          spec.x_label = "equivalent diameter [um]";
+          spec.x_label = "equivalent diameter [\u00b5m]";
           spec.y_label = "percent passing by mass";
           spec.log_x = true;
         }
@@ -421,7 +494,8 @@ std::vector<std::string> pool_sweep(const PoolOptions& o, std::FILE* log) {
       {"fit_rr_n.png", "Rosin-Rammler n", [](const FitRow& r) { return r.rr.n; },
        [](const FitRow& r) { return r.rr.n_ci.low; },
        [](const FitRow& r) { return r.rr.n_ci.high; }},
-      {"fit_rr_d0.png", "Rosin-Rammler d0 [um]", [](const FitRow& r) { return r.rr.d0 * 1e6; },
+      {"fit_rr_d0.png", "Rosin-Rammler d\u2080 [\u00b5m]",
+       [](const FitRow& r) { return r.rr.d0 * 1e6; },
        [](const FitRow& r) { return r.rr.d0_ci.low * 1e6; },
        [](const FitRow& r) { return r.rr.d0_ci.high * 1e6; }},
       {"fit_power_law_D.png", "power-law exponent D", [](const FitRow& r) { return r.pl.exponent; },
@@ -464,6 +538,7 @@ std::vector<std::string> pool_sweep(const PoolOptions& o, std::FILE* log) {
     spec.series = {mid, lo, hi};
     plot(spec, figures / p.file, files, log);
   }
+  files.push_back(write_pool_report(o, groups, fits, dir, files));
   return files;
 }
 

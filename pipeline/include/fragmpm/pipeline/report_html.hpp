@@ -25,8 +25,9 @@ struct ReportSection {
 
 struct Report {
   std::string title;
-  std::string subtitle;            ///< one line under the title (what was run, when, where)
-  std::vector<ReportRow> summary;  ///< what the run is
+  std::string subtitle;  ///< one line under the title (what was run, when, where)
+  std::string summary_title = "The run";
+  std::vector<ReportRow> summary;  ///< what the run (or study) is
   std::vector<ReportRow> checks;   ///< what says whether to trust it
   std::vector<ReportSection> sections;
   std::string details;  ///< preformatted text at the end (the summary.txt), may be empty
