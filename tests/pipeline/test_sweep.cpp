@@ -20,6 +20,7 @@
 #include "fragmpm/pipeline/scene_override.hpp"
 #include "fragmpm/pipeline/sweep_file.hpp"
 #include "fragmpm/pipeline/sweep_members.hpp"
+#include "report_test_support.hpp"
 
 namespace fs = std::filesystem;
 using fragmpm::test_support::read_text;
@@ -344,12 +345,7 @@ seeds = "1..2"
     EXPECT_TRUE(fs::exists(out / f)) << f;
   // report.html shows every figure it names, and names both groups.
   const std::string page = read_text(out / "report.html");
-  const std::regex image(R"re(<img src="([^"]+)")re");
-  int images = 0;
-  for (auto it = std::sregex_iterator(page.begin(), page.end(), image);
-       it != std::sregex_iterator(); ++it, ++images)
-    EXPECT_TRUE(fs::exists(out / (*it)[1].str())) << (*it)[1].str();
-  EXPECT_GE(images, 6);
+  EXPECT_GE(fragmpm::test::count_existing_report_images(page, out), 6);
   EXPECT_NE(page.find("<th>group 1</th>"), std::string::npos);
   EXPECT_NE(page.find("<th>group 2</th>"), std::string::npos);
   EXPECT_NE(page.find(": 2 members"), std::string::npos);
