@@ -10,7 +10,6 @@
 #include "fragmpm/mpm/hdf5_io.hpp"
 
 namespace fragmpm::mpm {
-namespace {
 
 std::string xml_escape(const std::string& text) {
   std::string out;
@@ -34,6 +33,8 @@ std::string xml_escape(const std::string& text) {
   }
   return out;
 }
+
+namespace {
 
 /// Shortest text that reads back as the same double.
 std::string exact(double value) {

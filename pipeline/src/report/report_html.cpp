@@ -7,34 +7,16 @@
 #include <fstream>
 #include <regex>
 
+#include "fragmpm/mpm/xdmf.hpp"
 #include "fragmpm/pipeline/pipeline_job.hpp"
 
 namespace fragmpm::pipeline {
 
 namespace {
 
+/// Element content and attribute values: the run file's XML escaping serves HTML as well.
 std::string escape(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
+  return mpm::xml_escape(text);
 }
 
 /// A relative path as an attribute value: each byte outside the unreserved set percent-encoded,

@@ -18,6 +18,9 @@
 
 namespace fragmpm::mpm {
 
+/// `text` with &, <, > and " escaped, for XML (and HTML) element content and attribute values.
+std::string xml_escape(const std::string& text);
+
 /// One per-point dataset of a frame.
 struct XdmfField {
   enum class Kind { scalar, vector, tensor };  ///< shapes N, N×3, N×3×3 (see above)
