@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 
 namespace fragmpm::mpm {
 namespace {
@@ -117,6 +118,9 @@ Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation deg
   if (damage <= 0.0) return trial_stress;
   if (degradation == Degradation::isotropic)
     return (1.0 - damage) * trial_stress;  // [XLS21] eq. (7)
+  if (degradation == Degradation::volumetric_deviatoric)
+    throw std::logic_error(
+        "degrade_stress: the volumetric-deviatoric split needs F (use degrade_with_energy)");
   // 001 eq. (26-27): scale the tensile principal stresses, keep the compressive ones, rebuild with
   // the same eigenvectors.
   Eigensolver<D> es;
@@ -146,6 +150,11 @@ Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation deg
 template <int D>
 double degradable_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation) {
   if (degradation == Degradation::isotropic) return model.energy_density<D>(F);
+  if (degradation == Degradation::volumetric_deviatoric) {
+    const double log_J = std::log(F.determinant());
+    const double volumetric = 0.5 * model.bulk_modulus * log_J * log_J;
+    return log_J > 0.0 ? model.energy_density<D>(F) : model.energy_density<D>(F) - volumetric;
+  }
   const Mat<D> b = F * F.transpose();
   const Mat<D> tau = model.kirchhoff<D>(F);
   Eigensolver<D> es;
@@ -166,6 +175,25 @@ DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F,
                                      Degradation degradation, double psi) {
   if (degradation == Degradation::isotropic)
     return {(1.0 - damage) * trial_stress, psi};  // [XLS21] eq. (7)
+  if (degradation == Degradation::volumetric_deviatoric) {
+    // [AMM09]'s split on the neo-Hookean of [XLS21] eq. (16)-(17): ψ_d = U·[J ≤ 1] + (1 − d)(W +
+    // U·[J > 1]). Its Kirchhoff stress is K ln J I times (1 − d) only in expansion, plus (1 − d) G
+    // dev b̄: the two terms of model.kirchhoff, scaled apart. The thermal pressure (the rest of
+    // the trial stress, isotropic) acts on the volume and is scaled with the volumetric term.
+    const double J = F.determinant();
+    const double log_J = std::log(J);
+    const double volumetric_factor = log_J > 0.0 ? 1.0 - damage : 1.0;
+    const Mat<D> tau = model.kirchhoff<D>(F);
+    const double tau_volumetric = model.bulk_modulus * log_J;
+    const Mat<D> tau_deviatoric = tau - tau_volumetric * Mat<D>::Identity();
+    const Mat<D> thermal = trial_stress - tau / J;
+    const Mat<D> stress = (volumetric_factor * tau_volumetric * Mat<D>::Identity() +
+                           (1.0 - damage) * tau_deviatoric) /
+                              J +
+                          volumetric_factor * thermal;
+    const double volumetric_energy = 0.5 * model.bulk_modulus * log_J * log_J;
+    return {stress, log_J > 0.0 ? psi : psi - volumetric_energy};
+  }
   const Mat<D> b = F * F.transpose();
   const Mat<D> tau = model.kirchhoff<D>(F);
   Eigensolver<D> es;

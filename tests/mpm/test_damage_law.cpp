@@ -395,3 +395,99 @@ TEST(DamageLaw, OneSpectralDecompositionGivesBothDegradedStressAndDegradableEner
       }
     }
 }
+
+namespace {
+
+/// Net work per reference volume of a damaged particle (fixed d) around a closed, non-proportional
+/// path of F: compress, shear, stretch, return. Trapezoidal rule on P = J σ F⁻ᵀ : dF with fine
+/// steps.
+double cycle_work(const mpm::NeoHookean& m, double damage, mpm::Degradation degradation) {
+  auto path = [](double t) {  // t in [0, 4]: four legs, F(0) = F(4) = I
+    mpm::Mat<2> F = mpm::Mat<2>::Identity();
+    const double a = std::min(t, 1.0), b = std::clamp(t - 1.0, 0.0, 1.0),
+                 c = std::clamp(t - 2.0, 0.0, 1.0), e = std::clamp(t - 3.0, 0.0, 1.0);
+    F(1, 1) = 1.0 - 0.3 * a + 0.3 * c;  // squeeze in y, released in the third leg
+    F(0, 1) = 0.4 * b - 0.4 * e;        // shear on, shear off in the fourth leg
+    F(0, 0) = 1.0 + 0.5 * b - 0.5 * e;  // stretch in x with the shear
+    return F;
+  };
+  auto nominal = [&](const mpm::Mat<2>& F) {
+    const mpm::Mat<2> trial = m.cauchy<2>(F);
+    const mpm::Mat<2> stress =
+        mpm::degrade_with_energy<2>(m, F, trial, damage, degradation, m.energy_density<2>(F))
+            .stress;
+    return mpm::Mat<2>(F.determinant() * stress * F.inverse().transpose());
+  };
+  const int n = 40000;
+  double work = 0.0;
+  mpm::Mat<2> F_old = path(0.0), P_old = nominal(F_old);
+  for (int k = 1; k <= n; ++k) {
+    const mpm::Mat<2> F = path(4.0 * k / n), P = nominal(F);
+    work += 0.5 * (P + P_old).cwiseProduct(F - F_old).sum();
+    F_old = F;
+    P_old = P;
+  }
+  return work;
+}
+
+}  // namespace
+
+TEST(DamageLaw, VolumetricDeviatoricSplitDerivesFromAPotential) {
+  // [AMM09]: ψ_d = U·[J ≤ 1] + (1 − d)(W + U·[J > 1]) is a potential, so a closed deformation
+  // cycle at fixed damage does no net work, and along any path the work equals the change of the
+  // stored energy ψ − d ψ_t. The spectral split of the Cauchy stress ([HH17] eq. (26)-(27)) is not
+  // a potential: the same cycle of a failed particle gives or takes energy that no term books.
+  const mpm::NeoHookean m = glass();
+  const double scale = m.shear_modulus;  // the cycle's strains are O(1): energies O(G)
+  for (const double d : {0.0, 0.5, 1.0})
+    EXPECT_NEAR(cycle_work(m, d, mpm::Degradation::volumetric_deviatoric), 0.0, 1e-6 * scale)
+        << "d = " << d;
+  EXPECT_GT(std::abs(cycle_work(m, 1.0, mpm::Degradation::tensile_spectral)), 1e-2 * scale);
+
+  // Stored energy equals the work along an open path (start undeformed, end sheared and squeezed).
+  const double d = 0.7;
+  mpm::Mat<2> F = mpm::Mat<2>::Identity(), F_old = F;
+  auto nominal = [&](const mpm::Mat<2>& G) {
+    const mpm::Mat<2> stress =
+        mpm::degrade_with_energy<2>(m, G, m.cauchy<2>(G), d,
+                                    mpm::Degradation::volumetric_deviatoric, m.energy_density<2>(G))
+            .stress;
+    return mpm::Mat<2>(G.determinant() * stress * G.inverse().transpose());
+  };
+  double work = 0.0;
+  mpm::Mat<2> P_old = nominal(F);
+  for (int k = 1; k <= 20000; ++k) {
+    const double t = double(k) / 20000;
+    F << 1.0 + 0.2 * t, 0.3 * t, 0.0, 1.0 - 0.35 * t;
+    const mpm::Mat<2> P = nominal(F);
+    work += 0.5 * (P + P_old).cwiseProduct(F - F_old).sum();
+    F_old = F;
+    P_old = P;
+  }
+  const double stored =
+      m.energy_density<2>(F) -
+      d * mpm::degradable_energy<2>(m, F, mpm::Degradation::volumetric_deviatoric);
+  EXPECT_NEAR(work, stored, 1e-6 * std::abs(stored));
+}
+
+TEST(DamageLaw, FailedParticleUnderTheVolumetricDeviatoricSplitCarriesOnlyPressure) {
+  const mpm::NeoHookean m = glass();
+  const auto failed = [&](const mpm::Mat<2>& F) {
+    return mpm::degrade_with_energy<2>(
+        m, F, m.cauchy<2>(F), 1.0, mpm::Degradation::volumetric_deviatoric, m.energy_density<2>(F));
+  };
+  // Sheared and squeezed (J < 1): the stress is the neo-Hookean pressure K ln J / J, isotropic.
+  mpm::Mat<2> F;
+  F << 1.5, 0.4, 0.0, 0.6;
+  const double J = F.determinant();
+  const auto squeezed = failed(F);
+  const mpm::Mat<2> pressure = m.bulk_modulus * std::log(J) / J * mpm::Mat<2>::Identity();
+  EXPECT_LT((squeezed.stress - pressure).norm(), 1e-9 * pressure.norm());
+  // Its stored energy is U(J) = K/2 (ln J)² alone.
+  EXPECT_NEAR(m.energy_density<2>(F) - squeezed.degradable,
+              0.5 * m.bulk_modulus * std::log(J) * std::log(J), 1e-9 * m.bulk_modulus);
+  // Stretched (J > 1): nothing is left.
+  F << 1.5, 0.4, 0.0, 0.9;
+  EXPECT_LT(failed(F).stress.norm(), 1e-9 * m.bulk_modulus);
+  EXPECT_NEAR(failed(F).degradable, m.energy_density<2>(F), 1e-9 * m.bulk_modulus);
+}

@@ -149,10 +149,12 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     spec.degradation = mpm::Degradation::tensile_spectral;
   else if (degradation == "isotropic")
     spec.degradation = mpm::Degradation::isotropic;
+  else if (degradation == "volumetric-deviatoric")
+    spec.degradation = mpm::Degradation::volumetric_deviatoric;
   else
-    m.expected(
-        "degradation",
-        "one of \"tensile\" (spectral, [HH17] eq. (26)-(27)), \"isotropic\" ([XLS21] eq. (7))");
+    m.expected("degradation",
+               "one of \"tensile\" (spectral, [HH17] eq. (26)-(27)), \"isotropic\" ([XLS21] eq. "
+               "(7)), \"volumetric-deviatoric\" ([AMM09])");
 
   if (law == "rankine") {
     if (m.has("crack_speed"))

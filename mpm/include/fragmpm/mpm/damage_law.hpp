@@ -36,6 +36,11 @@ using DamageLaw = std::variant<NoDamage, RankineSoftening, TimeToFailure>;
 enum class Degradation {
   tensile_spectral,  ///< only tensile principal stresses scale by (1 − d) ([HH17] eq. (26)-(27))
   isotropic,         ///< σ = (1 − d) σ^E ([XLS21] eq. (7))
+  /// ψ = ψ⁻ + (1 − d) ψ⁺ with ψ⁺ = W(b̄) + U(J)·[J > 1], ψ⁻ = U(J)·[J ≤ 1] ([AMM09]):
+  /// shear and volumetric tension degrade, volumetric compression does not. Unlike the spectral
+  /// split of the Cauchy stress, the degraded stress derives from a potential, so a damaged
+  /// particle stores exactly the work done on it, and a failed one carries a pressure only.
+  volumetric_deviatoric,
 };
 
 /// Weibull strength per particle ([HH17] eq. (25)): σ_f / σ̄_f = (V̄/V · ln ℛ / ln ½)^{1/m}.

@@ -42,9 +42,10 @@ Mat<D> thermal_cauchy_stress(double bulk_modulus, double expansion, double tempe
 
 /// Fraction of the volumetric coupling energy M that damage d leaves: (1 − d) for isotropic
 /// degradation ([XLS21] eq. (5)); with tensile-only degradation ([HH17] eq. (26)-(27)) a compressed
-/// particle (J < 1) keeps its volumetric response, so its coupling is undegraded.
+/// particle (J < 1) keeps its volumetric response, so its coupling is undegraded; so does the
+/// volumetric-deviatoric split ([AMM09]), which degrades U(J) only in expansion.
 inline double coupling_fraction(double damage, Degradation degradation, double J) {
-  if (degradation == Degradation::tensile_spectral && J < 1.0) return 1.0;
+  if (degradation != Degradation::isotropic && J < 1.0) return 1.0;
   return 1.0 - damage;
 }
 
