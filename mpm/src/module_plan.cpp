@@ -20,9 +20,20 @@ bool partitioning_active(const Problem<D>& problem) {
 template <int D>
 std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   std::vector<ModuleDecision> plan;
-  const char* shape = problem.grid.shape_function == ShapeFunctionKind::cpdi    ? "CPDI"
-                      : problem.grid.shape_function == ShapeFunctionKind::ugimp ? "uGIMP"
-                                                                                : "linear";
+  const char* shape = "linear";
+  switch (problem.grid.shape_function) {
+    case ShapeFunctionKind::cpdi:
+      shape = "CPDI";
+      break;
+    case ShapeFunctionKind::ugimp:
+      shape = "uGIMP";
+      break;
+    case ShapeFunctionKind::bspline2:
+      shape = "quadratic B-spline";
+      break;
+    case ShapeFunctionKind::linear:
+      break;
+  }
   plan.push_back({"mechanics", true,
                   std::string("explicit update-stress-last MPM with ") + shape +
                       " shape functions, neo-Hookean bodies"});

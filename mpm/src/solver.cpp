@@ -185,6 +185,9 @@ struct Solver<D>::Impl {
       case ShapeFunctionKind::cpdi:
         failure = advance_with_modules<ShapeFunctionKind::cpdi>(dt);
         break;
+      case ShapeFunctionKind::bspline2:
+        failure = advance_with_modules<ShapeFunctionKind::bspline2>(dt);
+        break;
     }
     if (failure) return failure;
     if (s.thermal) s.next_dt_limit = std::min(s.next_dt_limit, s.thermal->dt_limit);

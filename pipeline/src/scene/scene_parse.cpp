@@ -79,8 +79,10 @@ int read_grid(const Section& g, mpm::GridSpec<2>& grid) {
     grid.shape_function = mpm::ShapeFunctionKind::linear;
   else if (sf == "ugimp")
     grid.shape_function = mpm::ShapeFunctionKind::ugimp;
+  else if (sf == "bspline2")
+    grid.shape_function = mpm::ShapeFunctionKind::bspline2;
   else
-    g.expected("shape_function", "one of \"cpdi\", \"linear\", \"ugimp\"");
+    g.expected("shape_function", "one of \"cpdi\", \"linear\", \"ugimp\", \"bspline2\"");
   const std::string outside = g.optional_string("outside").value_or("stop");
   if (outside == "stop")
     grid.outside = mpm::OutsidePolicy::stop;
