@@ -72,7 +72,9 @@ double largest_principal_stress(const Mat<D>& stress) {
 template <int D>
 void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double strength,
                    double characteristic_length, double dt, double& history, double& damage) {
-  if (std::holds_alternative<NoDamage>(law) || !std::isfinite(strength)) return;
+  if (std::holds_alternative<NoDamage>(law) || std::holds_alternative<PhaseField>(law) ||
+      !std::isfinite(strength))
+    return;
   update_damage_from_equivalent(law, largest_principal_stress<D>(trial_stress), strength,
                                 characteristic_length, dt, history, damage);
 }
@@ -80,7 +82,7 @@ void update_damage(const DamageLaw& law, const Mat<D>& trial_stress, double stre
 void update_damage_from_equivalent(const DamageLaw& law, double largest, double strength,
                                    double characteristic_length, double dt, double& history,
                                    double& damage) {
-  if (std::holds_alternative<NoDamage>(law)) return;
+  if (std::holds_alternative<NoDamage>(law) || std::holds_alternative<PhaseField>(law)) return;
   // An infinite (or NaN) strength never fails: such particles keep their history untouched too.
   if (!std::isfinite(strength)) return;
   history = std::max(history, largest);

@@ -1,5 +1,6 @@
 // Which modules a scene's step runs, and why: fixed once at setup from the scene and logged by
 // `fragmpm run` (and written to /meta), so a reader of a run knows what physics it contains.
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -20,9 +21,20 @@ bool partitioning_active(const Problem<D>& problem) {
 template <int D>
 std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   std::vector<ModuleDecision> plan;
-  const char* shape = problem.grid.shape_function == ShapeFunctionKind::cpdi    ? "CPDI"
-                      : problem.grid.shape_function == ShapeFunctionKind::ugimp ? "uGIMP"
-                                                                                : "linear";
+  const char* shape = "linear";
+  switch (problem.grid.shape_function) {
+    case ShapeFunctionKind::cpdi:
+      shape = "CPDI";
+      break;
+    case ShapeFunctionKind::ugimp:
+      shape = "uGIMP";
+      break;
+    case ShapeFunctionKind::bspline2:
+      shape = "quadratic B-spline";
+      break;
+    case ShapeFunctionKind::linear:
+      break;
+  }
   plan.push_back({"mechanics", true,
                   std::string("explicit update-stress-last MPM with ") + shape +
                       " shape functions, neo-Hookean bodies"});
@@ -44,6 +56,22 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
     for (const auto& name : damaging) damage_reason += " '" + name + "'";
   }
   plan.push_back({"damage", !damaging.empty(), damage_reason});
+  std::string phase_field_reason;
+  for (const auto& m : problem.materials)
+    if (const auto* law = std::get_if<PhaseField>(&m.damage)) {
+      char text[160];
+      std::snprintf(text, sizeof text, "%s'%s' (l0 = %.4g m, G_c = %.4g J/m2, k_f = %.3g)",
+                    phase_field_reason.empty() ? "" : ", ", m.name.c_str(), law->length_scale,
+                    law->fracture_energy, law->residual_stiffness);
+      phase_field_reason += text;
+    }
+  plan.push_back(
+      {"phase field", !phase_field_reason.empty(),
+       phase_field_reason.empty()
+           ? "no phase-field material: no nodal phase-field solve"
+           : "AT2 phase field ([KT19]) on " + phase_field_reason +
+                 ": nodal system solved by conjugate gradients each step, one field per body; "
+                 "Hencky elasticity with the spectral tension-compression split"});
   const std::size_t bodies = problem.body_names.size();
   std::string partition_reason;
   if (problem.contact.partitioning == Partitioning::bodies)

@@ -73,6 +73,9 @@ const std::vector<ScalarColumn<D>>& scalar_columns() {
        "kinetic energy the grid-to-particle transfer removes (FLIP smoothing, PIC projection; "
        "cumulative)",
        true, "", [](const R& r) { return r.totals.transfer_dissipation; }, true},
+      {"fracture_energy",
+       "crack energy of the phase field, G_c times the regularised crack area ([KT19] eq. (3))",
+       true, "", [](const R& r) { return r.totals.fracture_energy; }, true},
       {"wall_work", "work of the walls on the material (cumulative)", true, "",
        [](const R& r) { return r.totals.wall_work; }},
       {"gravity_work", "work of gravity (cumulative)", true, "",
@@ -418,6 +421,7 @@ const std::vector<std::pair<const char*, double EnergyAccumulators::*>>& accumul
       {"contact_dissipation", &EnergyAccumulators::contact_dissipation},
       {"transfer_dissipation", &EnergyAccumulators::transfer_dissipation},
       {"initial_energy", &EnergyAccumulators::initial_energy},
+      {"fracture_energy", &EnergyAccumulators::fracture_energy},
   };
   return fields;
 }

@@ -44,7 +44,9 @@ struct Solver<D>::Impl {
     const Problem<D>& problem = s.problem;
     for (const auto& m : problem.materials) {
       s.models.push_back({m.bulk_modulus, m.shear_modulus});
-      s.material_damages.push_back(m.damages() ? 1 : 0);
+      const bool phase_field = std::holds_alternative<PhaseField>(m.damage);
+      s.material_damages.push_back(phase_field ? material_phase_field : (m.damages() ? 1 : 0));
+      s.plan.phase_field = s.plan.phase_field || phase_field;
       const auto* rankine = std::get_if<RankineSoftening>(&m.damage);
       s.material_nonlocal.push_back(rankine && rankine->nonlocal ? 1 : 0);
       s.nonlocal_damage = s.nonlocal_damage || s.material_nonlocal.back();
@@ -72,7 +74,57 @@ struct Solver<D>::Impl {
     if (!problem.loads.empty()) s.load_force.assign(problem.particles.size(), Vec<D>::Zero());
     for (const auto& w : problem.walls) s.penalty_walls |= w.kind == WallKind::penalty;
     if (problem.thermal.active()) start_thermal();
+    if (s.plan.phase_field) start_phase_field();
     compute_initial_state();
+  }
+
+  /// The phase-field state with each material's coefficients, and the first solve when the scene
+  /// starts with a history field (an initial crack, [KT19] §5.1): the initial state then holds
+  /// its d, stress and crack energy.
+  void start_phase_field() {
+    StepState<D>& s = state;
+    s.phase_field = std::make_unique<PhaseFieldState<D>>();
+    PhaseFieldState<D>& pf = *s.phase_field;
+    const std::size_t materials = s.problem.materials.size();
+    for (auto* v : {&pf.local_coefficient, &pf.gradient_coefficient, &pf.drive_factor,
+                    &pf.residual_stiffness, &pf.fracture_energy, &pf.length_scale})
+      v->assign(materials, 0.0);
+    for (std::size_t m = 0; m < materials; ++m)
+      if (const auto* law = std::get_if<PhaseField>(&s.problem.materials[m].damage)) {
+        pf.local_coefficient[m] = law->fracture_energy / (4.0 * law->length_scale);
+        pf.gradient_coefficient[m] = law->fracture_energy * law->length_scale;
+        pf.drive_factor[m] = 1.0 - law->residual_stiffness;
+        pf.residual_stiffness[m] = law->residual_stiffness;
+        pf.fracture_energy[m] = law->fracture_energy;
+        pf.length_scale[m] = law->length_scale;
+      }
+    s.totals.fracture_energy = 0.0;
+    const auto& P = s.problem.particles;
+    const bool history = std::any_of(P.damage_history.begin(), P.damage_history.end(),
+                                     [](double h) { return h > 0.0; });
+    // A particle outside the domain fails the first step with its diagnostic; no solve before.
+    if (history && !update_active_region(s)) {
+      bin_particles_into_strips(s);
+      phase_field_for_kind();
+    }
+  }
+
+  /// The phase-field solve for the scene's shape function.
+  void phase_field_for_kind() {
+    switch (state.problem.grid.shape_function) {
+      case ShapeFunctionKind::linear:
+        solve_phase_field<D, ShapeFunctionKind::linear>(state);
+        break;
+      case ShapeFunctionKind::ugimp:
+        solve_phase_field<D, ShapeFunctionKind::ugimp>(state);
+        break;
+      case ShapeFunctionKind::cpdi:
+        solve_phase_field<D, ShapeFunctionKind::cpdi>(state);
+        break;
+      case ShapeFunctionKind::bspline2:
+        solve_phase_field<D, ShapeFunctionKind::bspline2>(state);
+        break;
+    }
   }
 
   void start_thermal() {
@@ -98,8 +150,10 @@ struct Solver<D>::Impl {
         kinetic += affine_kinetic_energy<D>(
             P.mass[p], P.affine[p], domain_second_moment<D>(P, static_cast<std::size_t>(p), kind));
     }
+    const double fracture_energy = s.totals.fracture_energy;  // of the initial phase-field solve
     s.totals = EnergyAccumulators{};
-    s.totals.initial_energy = kinetic + strain;
+    s.totals.fracture_energy = fracture_energy;
+    s.totals.initial_energy = kinetic + strain + fracture_energy;
     s.row = SeriesRow<D>{};
     s.row.kinetic = kinetic;
     s.row.strain = strain;
@@ -168,10 +222,13 @@ struct Solver<D>::Impl {
       return failure;
     }
     if (auto failure = update_active_region(s)) return failure;
+    bin_particles_into_strips(s);
+    // [KT19] Alg. 1: the phase field from the history of the last step first, so that the damage
+    // field of the partition and this step's stresses see its d.
+    if (s.plan.phase_field) phase_field_for_kind();
     s.partition.this_step = s.plan.by_bodies;
     if (s.plan.partitioned && !s.plan.by_bodies) update_damage_field(s);
     size_grid(s);
-    bin_particles_into_strips(s);
     if (!s.load_force.empty()) update_load_forces(s);
     if (s.penalty_walls) apply_penalty_walls(s);
     std::optional<NumericalFailure> failure;
@@ -184,6 +241,9 @@ struct Solver<D>::Impl {
         break;
       case ShapeFunctionKind::cpdi:
         failure = advance_with_modules<ShapeFunctionKind::cpdi>(dt);
+        break;
+      case ShapeFunctionKind::bspline2:
+        failure = advance_with_modules<ShapeFunctionKind::bspline2>(dt);
         break;
     }
     if (failure) return failure;
@@ -199,9 +259,9 @@ struct Solver<D>::Impl {
     row.dt = dt;
     row.totals = s.totals;
     row.balance_error =
-        (row.kinetic + row.strain + s.totals.dissipated + s.totals.friction_work +
-         s.totals.contact_dissipation + s.totals.transfer_dissipation + s.totals.lost.kinetic +
-         s.totals.lost.strain) -
+        (row.kinetic + row.strain + s.totals.fracture_energy + s.totals.dissipated +
+         s.totals.friction_work + s.totals.contact_dissipation + s.totals.transfer_dissipation +
+         s.totals.lost.kinetic + s.totals.lost.strain) -
         (s.totals.initial_energy + s.totals.wall_work + s.totals.gravity_work + s.totals.load_work);
     for (std::size_t w = 0; w < s.problem.walls.size(); ++w)
       row.wall_displacement[w] = s.problem.walls[w].velocity.displacement(s.time);

@@ -84,6 +84,14 @@ TEST(StepAllocations, DamagingSceneAllocatesNothing) {
   EXPECT_EQ(allocations_in_steps_10_to_20("scenes/paper/brazilian.toml"), 0);
 }
 
+// The phase-field stage keeps its node, band and matrix arrays from step to step. (Eigen's
+// conjugate gradients take four work vectors of the unknowns' length inside each solve from
+// Eigen's aligned allocator, which calls malloc, not operator new: this counter does not see
+// them.)
+TEST(StepAllocations, PhaseFieldSceneAllocatesNothingThroughNew) {
+  EXPECT_EQ(allocations_in_steps_10_to_20("scenes/verify/phase-field-bar.toml"), 0);
+}
+
 // The counter sees allocations at all (a test that cannot fail is no test).
 TEST(StepAllocations, CounterCountsAVectorAllocation) {
   const long long before = allocations.load();

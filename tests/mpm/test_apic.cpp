@@ -111,10 +111,11 @@ TEST(Apic, StencilOffsetsAreNodeMinusParticleForEveryKernel) {
   const Vec<2> x(0.437, 0.262);
   Mat<2> domain;
   domain << 0.05, 0.01, -0.02, 0.04;
-  mpm::Stencil<2> kinds[3];
+  mpm::Stencil<2> kinds[4];
   mpm::linear_stencil<2, true>(x, grid, kinds[0]);
   mpm::ugimp_stencil<2, true>(x, Vec<2>(0.025, 0.025), grid, kinds[1]);
   mpm::cpdi_stencil<2, true>(x, domain, grid, kinds[2]);
+  mpm::bspline2_stencil<2, true>(x, grid, kinds[3]);
   for (const auto& s : kinds) {
     Vec<2> first = Vec<2>::Zero();
     for (int e = 0; e < s.count; ++e) {
@@ -133,7 +134,7 @@ TEST(Apic, StencilOffsetsAreNodeMinusParticleForEveryKernel) {
 // ε:(C_p D_p) at the old one, and D_p changes as the particle moves across the cell. Over a quarter
 // turn of the larger disk of `fragmpm verify --stability` the drift is 7e-7 of Σ m r² ω.
 TEST(Apic, FreeSpinKeepsMomentumAngularMomentumAndEnergy) {
-  for (const char* shape : {"cpdi", "linear", "ugimp"}) {
+  for (const char* shape : {"cpdi", "linear", "ugimp", "bspline2"}) {
     mpm::Solver<2> solver(spinning_disk("apic", shape));
     const auto& P = solver.particles();
     double inertia = 0.0, momentum_scale = 0.0;

@@ -181,6 +181,7 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   c.totals.friction_work = 5e-324;  // subnormal
   c.totals.dissipated = 2.0 / 7.0;
   c.totals.initial_energy = 1e300;
+  c.totals.fracture_energy = 1.0 / 11.0;
   c.particles = random_particles(29, true, 4);
   c.particles.x[3](1) = -0.0;
   c.particles.v[4](0) = 4.9e-324;
@@ -201,7 +202,7 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   for (double EnergyAccumulators::*m :
        {&EnergyAccumulators::wall_work, &EnergyAccumulators::gravity_work,
         &EnergyAccumulators::friction_work, &EnergyAccumulators::dissipated,
-        &EnergyAccumulators::initial_energy})
+        &EnergyAccumulators::initial_energy, &EnergyAccumulators::fracture_energy})
     EXPECT_EQ(std::memcmp(&(r->totals.*m), &(c.totals.*m), sizeof(double)), 0);
   const Particles<2>& p = c.particles;
   const Particles<2>& q = r->particles;

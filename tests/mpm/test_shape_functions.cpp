@@ -1,7 +1,8 @@
 // Shape-function invariants: partition of unity, zero-sum gradients (a constant field has zero
 // gradient), exact gradient of a linear field, and CPDI = linear for an undeformed particle inside
 // one cell (the bilinear hat averaged over a centred box equals its centre value, [XLS21] eq.
-// (52)-(53)).
+// (52)-(53)). The quadratic B-spline ([KT19] §4) has the same invariants, is the C¹ piecewise
+// quadratic, and stays inside the padded active region.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -143,5 +144,158 @@ TEST(ShapeFunctions, CpdiGradientMatchesPaperEquation53) {
                              (S2 - S4) * Vec<2>(r1[1] + r2[1], -r1[0] - r2[0])) /
                             (2.0 * V);
     EXPECT_NEAR((gradient - expected).norm(), 0.0, 1e-12) << "node " << node.transpose();
+  }
+}
+
+TEST(ShapeFunctions, QuadraticBsplinePartitionOfUnityAndLinearCompleteness) {
+  const auto g = test_grid();
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 2.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec<2> x(u(rng), u(rng));
+    Stencil<2> s;
+    bspline2_stencil<2>(x, g, s);
+    EXPECT_EQ(s.count, 9);
+    expect_invariants(g, s, x);
+  }
+  // On the knots themselves (node positions and cell mid-points) as well.
+  for (const Vec<2>& x : {Vec<2>(g.origin + Vec<2>(0.25 * 3, 0.25 * 5)),
+                          Vec<2>(g.origin + Vec<2>(0.25 * 3.5, 0.25 * 5.5))}) {
+    Stencil<2> s;
+    bspline2_stencil<2>(x, g, s);
+    expect_invariants(g, s, x);
+  }
+}
+
+TEST(ShapeFunctions, QuadraticBsplineIsTheC1PiecewiseQuadratic) {
+  // N(r) = 3/4 − r² for |r| < 1/2, (3/2 − |r|)²/2 for 1/2 ≤ |r| < 3/2, r = (x − X_i)/h: the
+  // stencil's weights and gradients are that function and its derivative, and both are continuous
+  // where a particle crosses a knot (cell mid-point) or a node.
+  const auto g = test_grid();
+  auto N = [](double r) {
+    const double a = std::abs(r);
+    return a < 0.5 ? 0.75 - r * r : (a < 1.5 ? 0.5 * (1.5 - a) * (1.5 - a) : 0.0);
+  };
+  auto dN = [](double r) {
+    const double a = std::abs(r);
+    return a < 0.5 ? -2.0 * r : (a < 1.5 ? -(r > 0 ? 1.0 : -1.0) * (1.5 - a) : 0.0);
+  };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 2.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Vec<2> x(u(rng), u(rng));
+    Stencil<2> s;
+    bspline2_stencil<2>(x, g, s);
+    for (int e = 0; e < s.count; ++e) {
+      const Vec<2> r = (x - g.position(g.global(s.node[e]))) / g.cell_size;
+      EXPECT_NEAR(s.weight[e], N(r[0]) * N(r[1]), 1e-14);
+      const Vec<2> gradient(dN(r[0]) * N(r[1]), N(r[0]) * dN(r[1]));
+      EXPECT_NEAR((s.gradient[e] - gradient / g.cell_size).norm(), 0.0, 1e-12);
+    }
+  }
+  // Either side of a knot (t = 5.5 cells) and of a node (t = 6): the node sets differ across the
+  // knot, so compare the interpolants of a smooth nodal field f(X) = sin X₀ + X₁²: value and
+  // gradient continuous to O(ε).
+  auto interpolate = [&](const Vec<2>& x, double& value, Vec<2>& gradient) {
+    Stencil<2> s;
+    bspline2_stencil<2>(x, g, s);
+    value = 0.0;
+    gradient.setZero();
+    for (int e = 0; e < s.count; ++e) {
+      const Vec<2> X = g.position(g.global(s.node[e]));
+      const double f = std::sin(X[0]) + X[1] * X[1];
+      value += s.weight[e] * f;
+      gradient += f * s.gradient[e];
+    }
+  };
+  for (double t : {5.5, 6.0}) {
+    const double eps = 1e-9;
+    const Vec<2> below(g.origin[0] + (t - eps) * g.cell_size, 0.4);
+    const Vec<2> above(g.origin[0] + (t + eps) * g.cell_size, 0.4);
+    double v0, v1;
+    Vec<2> g0, g1;
+    interpolate(below, v0, g0);
+    interpolate(above, v1, g1);
+    EXPECT_NEAR(v0, v1, 1e-8) << "t = " << t;
+    EXPECT_NEAR((g0 - g1).norm(), 0.0, 1e-7) << "t = " << t;
+  }
+}
+
+TEST(ShapeFunctions, QuadraticBsplineStencilStaysInsideThePaddedActiveRegion) {
+  // The active region is the union of the cells holding stencil_bounds' corners plus one node of
+  // padding (step/active_region.cpp): every node of the three-node support must lie in it, one
+  // node inside the padding.
+  const auto g = test_grid();
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> u(0.0, 2.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec<2> x(u(rng), u(rng));
+    Vec<2> lower, upper;
+    stencil_bounds<2>(ShapeFunctionKind::bspline2, x, Mat<2>::Zero(), Vec<2>::Zero(), g.cell_size,
+                      lower, upper);
+    Stencil<2> s;
+    bspline2_stencil<2>(x, g, s);
+    for (int k = 0; k < 2; ++k) {
+      const auto first =
+          static_cast<std::int64_t>(std::floor((lower[k] - g.origin[k]) * g.inverse_cell_size));
+      const auto last =
+          static_cast<std::int64_t>(std::floor((upper[k] - g.origin[k]) * g.inverse_cell_size)) + 1;
+      for (int e = 0; e < s.count; ++e) {
+        const auto node = g.global(s.node[e])[k];
+        EXPECT_GE(node, first);
+        EXPECT_LE(node, last);
+      }
+    }
+  }
+}
+
+TEST(ShapeFunctions, EveryKernelConservesMassAndMomentumInParticleToGrid) {
+  // m_i = Σ S̄_ip m_p and p_i = Σ S̄_ip m_p v_p sum over the nodes to the particles' mass and
+  // momentum because Σ_i S̄_ip = 1 for each kind.
+  const auto g = test_grid();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.2, 1.8), s(-1, 1);
+  for (const ShapeFunctionKind kind : {ShapeFunctionKind::linear, ShapeFunctionKind::ugimp,
+                                       ShapeFunctionKind::cpdi, ShapeFunctionKind::bspline2}) {
+    std::vector<double> node_mass(static_cast<std::size_t>(g.node_count()), 0.0);
+    std::vector<Vec<2>> node_momentum(node_mass.size(), Vec<2>::Zero());
+    double mass = 0.0;
+    Vec<2> momentum = Vec<2>::Zero();
+    for (int p = 0; p < 500; ++p) {
+      const Vec<2> x(u(rng), u(rng)), v(s(rng), s(rng));
+      const double m = 1.0 + 0.5 * s(rng);
+      Mat<2> domain;
+      domain << 0.06 + 0.01 * s(rng), 0.01 * s(rng), 0.01 * s(rng), 0.06 + 0.01 * s(rng);
+      Stencil<2> st;
+      switch (kind) {
+        case ShapeFunctionKind::linear:
+          linear_stencil<2>(x, g, st);
+          break;
+        case ShapeFunctionKind::ugimp:
+          ugimp_stencil<2>(x, 0.5 * domain.diagonal().cwiseAbs(), g, st);
+          break;
+        case ShapeFunctionKind::cpdi:
+          cpdi_stencil<2>(x, domain, g, st);
+          break;
+        case ShapeFunctionKind::bspline2:
+          bspline2_stencil<2>(x, g, st);
+          break;
+      }
+      for (int e = 0; e < st.count; ++e) {
+        node_mass[static_cast<std::size_t>(st.node[e])] += st.weight[e] * m;
+        node_momentum[static_cast<std::size_t>(st.node[e])] += st.weight[e] * m * v;
+      }
+      mass += m;
+      momentum += m * v;
+    }
+    double grid_mass = 0.0;
+    Vec<2> grid_momentum = Vec<2>::Zero();
+    for (std::size_t i = 0; i < node_mass.size(); ++i) {
+      grid_mass += node_mass[i];
+      grid_momentum += node_momentum[i];
+    }
+    EXPECT_NEAR(grid_mass / mass, 1.0, 1e-13) << static_cast<int>(kind);
+    EXPECT_NEAR((grid_momentum - momentum).norm() / momentum.norm(), 0.0, 1e-12)
+        << static_cast<int>(kind);
   }
 }

@@ -100,7 +100,7 @@ TEST(Transfer, ParticleToGridConservesMassAndMomentum) {
 }
 
 TEST(Solver, MomentumConservedInFreeFlight) {
-  for (const char* shape : {"cpdi", "linear", "ugimp"}) {
+  for (const char* shape : {"cpdi", "linear", "ugimp", "bspline2"}) {
     for (double pic : {0.0, 0.3}) {
       mpm::Solver<2> solver(block(shape, pic));
       const Vec<2> p0 = solver.last_row().momentum;

@@ -102,6 +102,29 @@ TEST(Scene, OutsidePolicyDefaultsToStop) {
   EXPECT_EQ(fp::parse_scene(removing, "good.toml").grid.outside, mpm::OutsidePolicy::remove);
 }
 
+TEST(Scene, ShapeFunctionNamesSelectTheirKinds) {
+  const std::pair<const char*, mpm::ShapeFunctionKind> kinds[] = {
+      {"cpdi", mpm::ShapeFunctionKind::cpdi},
+      {"linear", mpm::ShapeFunctionKind::linear},
+      {"ugimp", mpm::ShapeFunctionKind::ugimp},
+      {"bspline2", mpm::ShapeFunctionKind::bspline2}};
+  for (const auto& [name, kind] : kinds) {
+    const std::string text =
+        replace(kGood, "max = [\"20 mm\", \"20 mm\"]",
+                "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"" + std::string(name) + "\"");
+    const mpm::Problem<2> p = fp::parse_scene(text, "good.toml");
+    EXPECT_EQ(p.grid.shape_function, kind) << name;
+    EXPECT_EQ(p.particles.size(), 128u) << name;  // the kernel does not change the sampling
+  }
+  // The module plan names the kernel the step runs.
+  const std::string bspline =
+      replace(kGood, "max = [\"20 mm\", \"20 mm\"]",
+              "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"bspline2\"");
+  const auto plan = mpm::plan_modules<2>(fp::parse_scene(bspline, "good.toml"));
+  EXPECT_NE(plan.front().reason.find("quadratic B-spline"), std::string::npos)
+      << plan.front().reason;
+}
+
 TEST(Scene, BoxGivesTheExactLatticeCountAndUnitsAreSI) {
   const mpm::Problem<2> p = fp::parse_scene(kGood, "good.toml");
   // Box 4 mm x 2 mm at spacing 0.25 mm: 16 x 8 lattice points.
@@ -599,7 +622,7 @@ radius = "4 mm")"),
       {"unknown_shape_function",
        replace(kGood, "max = [\"20 mm\", \"20 mm\"]",
                "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"quadratic\""),
-       "quadratic", "grid.shape_function", "one of \"cpdi\", \"linear\", \"ugimp\""},
+       "quadratic", "grid.shape_function", "one of \"cpdi\", \"linear\", \"ugimp\", \"bspline2\""},
       {"particles_per_cell_zero",
        replace(kGood, "max = [\"20 mm\", \"20 mm\"]",
                "max = [\"20 mm\", \"20 mm\"]\nparticles_per_cell = 0"),

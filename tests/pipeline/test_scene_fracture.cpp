@@ -14,6 +14,7 @@
 #include <variant>
 
 #include "fragmpm/mpm/damage_law.hpp"
+#include "fragmpm/mpm/solver.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 
 namespace fp = fragmpm::pipeline;
@@ -149,6 +150,33 @@ TEST(SceneFracture, TimeToFailureIsotropicAndNoDamage) {
       fp::parse_scene(with_material_keys("damage = \"none\""), "elastic.toml");
   EXPECT_FALSE(elastic.materials[0].damages());
   for (double s : elastic.particles.strength) EXPECT_TRUE(std::isinf(s));
+}
+
+TEST(SceneFracture, PhaseFieldMaterialAndItsDefaults) {
+  const std::string text = with_material_keys(
+      "damage = \"phase-field\"\nlength_scale = \"1 mm\"\nfracture_energy = \"0.1 N/mm\"");
+  const mpm::Problem<2> p = fp::parse_scene(text, "pf.toml");
+  ASSERT_TRUE(std::holds_alternative<mpm::PhaseField>(p.materials[0].damage));
+  const auto& law = std::get<mpm::PhaseField>(p.materials[0].damage);
+  EXPECT_DOUBLE_EQ(law.length_scale, 1e-3);
+  EXPECT_NEAR(law.fracture_energy, 100.0, 1e-12);                    // "0.1 N/mm" = 100 J/m²
+  EXPECT_EQ(law.residual_stiffness, 0.0);                            // [KT19] §2.1: k_f = 0
+  for (double s : p.particles.strength) EXPECT_TRUE(std::isinf(s));  // no strength is read
+  // A phase-field crack becomes separable at d = 0.95 unless [contact] says otherwise.
+  EXPECT_DOUBLE_EQ(p.contact.critical_damage, mpm::phase_field_critical_damage);
+  const mpm::Problem<2> set = fp::parse_scene(
+      replace(text, "\"1 mm\"\nfracture", "\"0.5 mm\"\nresidual_stiffness = 1e-4\nfracture"),
+      "pf.toml");
+  EXPECT_DOUBLE_EQ(std::get<mpm::PhaseField>(set.materials[0].damage).length_scale, 0.5e-3);
+  EXPECT_DOUBLE_EQ(std::get<mpm::PhaseField>(set.materials[0].damage).residual_stiffness, 1e-4);
+  const mpm::Problem<2> chosen = fp::parse_scene(
+      replace(text, "[stop]", "[contact]\ncritical_damage = 0.99\n\n[stop]"), "pf.toml");
+  EXPECT_DOUBLE_EQ(chosen.contact.critical_damage, 0.99);
+  // The module plan names it.
+  bool listed = false;
+  for (const auto& m : mpm::plan_modules<2>(p))
+    if (m.module == "phase field") listed = m.active;
+  EXPECT_TRUE(listed);
 }
 
 TEST(SceneFracture, WeibullStrengthsAreSeededPerParticleDraws) {
@@ -532,9 +560,51 @@ std::string with_load(const std::string& load) {
 std::vector<BadFractureScene> bad_scenes() {
   const std::string weibull =
       "weibull = { reference_strength = \"100 MPa\", reference_volume = \"1 mm3\", modulus = 6 }";
+  const std::string phase_field =
+      "damage = \"phase-field\"\nlength_scale = \"1 mm\"\nfracture_energy = \"0.1 N/mm\"";
   return {
+      {"phase_field_missing_length_scale",
+       with_material_keys("damage = \"phase-field\"\nfracture_energy = \"0.1 N/mm\""),
+       "[[materials]]", "materials[0].length_scale",
+       "missing required key: expected length_scale (the phase-field length l0"},
+      {"phase_field_missing_fracture_energy",
+       with_material_keys("damage = \"phase-field\"\nlength_scale = \"1 mm\""), "[[materials]]",
+       "materials[0].fracture_energy",
+       "missing required key: expected fracture_energy (the critical"},
+      {"phase_field_length_below_cell",
+       replace(with_material_keys(phase_field), "\"1 mm\"\nfracture", "\"0.3 mm\"\nfracture"),
+       "length_scale", "materials[0].length_scale",
+       "the smallest admissible length_scale is 0.0005 m (grid.cell_size), got 0.0003 m"},
+      {"phase_field_negative_length",
+       replace(with_material_keys(phase_field), "\"1 mm\"\nfracture", "\"-1 mm\"\nfracture"),
+       "length_scale", "materials[0].length_scale", "expected a positive length l0"},
+      {"phase_field_length_wrong_unit",
+       replace(with_material_keys(phase_field), "\"1 mm\"\nfracture", "\"1 MPa\"\nfracture"),
+       "length_scale", "materials[0].length_scale", "expected a length"},
+      {"phase_field_zero_fracture_energy",
+       replace(with_material_keys(phase_field), "\"0.1 N/mm\"", "0"), "fracture_energy",
+       "materials[0].fracture_energy", "a positive critical energy release rate G_c"},
+      {"phase_field_residual_stiffness_one",
+       with_material_keys(phase_field + "\nresidual_stiffness = 1"), "residual_stiffness",
+       "materials[0].residual_stiffness", "a residual stiffness 0 <= k_f < 1"},
+      {"phase_field_with_strength", with_material_keys(phase_field + "\nstrength = \"5 MPa\""),
+       "strength", "materials[0].strength",
+       "expected strength only with damage = \"rankine\" or \"time-to-failure\", got it with "
+       "\"phase-field\""},
+      {"length_scale_with_rankine",
+       replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\nlength_scale = \"1 mm\""),
+       "length_scale", "materials[0].length_scale",
+       "expected length_scale only with damage = \"phase-field\", got it with \"rankine\""},
+      {"length_scale_without_damage", with_material_keys("length_scale = \"1 mm\""), "length_scale",
+       "materials[0].length_scale", "only with a damage law"},
+      {"phase_field_with_thermal",
+       with_material_keys(phase_field + "\nheat_capacity = \"700 J/(kg K)\"\nconductivity = \"1 "
+                                        "W/(m K)\""),
+       "damage = \"phase-field\"", "materials[0].damage",
+       "expected a damage law other than \"phase-field\" in a scene whose thermal module is on"},
       {"unknown_damage", replace(kScene, "\"rankine\"", "\"brittle\""), "damage",
-       "materials[0].damage", "one of \"none\", \"rankine\", \"time-to-failure\", got \"brittle\""},
+       "materials[0].damage",
+       "one of \"none\", \"rankine\", \"time-to-failure\", \"phase-field\", got \"brittle\""},
       {"strength_wrong_unit", replace(kScene, "\"50 MPa\"", "\"50 mm\""), "strength",
        "materials[0].strength", "expected a pressure"},
       {"negative_strength", replace(kScene, "\"50 MPa\"", "\"-5 MPa\""), "strength",

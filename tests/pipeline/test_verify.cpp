@@ -1,5 +1,5 @@
 // V1 (docs/verification.md): the bar's centre-of-mass velocity error against the closed form must
-// fall with h at first order or better, for CPDI and linear shape functions.
+// fall with h at first order or better, for CPDI, linear and quadratic B-spline shape functions.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,12 +14,17 @@ TEST(VerifyBar, ErrorFallsAtFirstOrderOrBetter) {
   VerifyOptions options;
   options.quick = true;  // h = L/10, L/20, L/40
   const auto rows = verify_bar(options);
-  ASSERT_EQ(rows.size(), 6u);
+  ASSERT_EQ(rows.size(), 9u);
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    EXPECT_LT(rows[i].error, 0.03) << rows[i].variant << " level " << rows[i].level;
+    // The B-spline's interpolant at the supported end is ⅛ of the first interior node's velocity,
+    // not 0 (the wall holds the nodes on and behind its plane, and the basis reaches 1.5 cells):
+    // the bar vibrates as if about h/4 longer. Measured 0.110, 0.050, 0.024 against 0.024,
+    // 0.0099, 0.0044 for linear hats (docs/verification.md).
+    const double bound = rows[i].variant == "bspline2" ? 0.12 : 0.03;
+    EXPECT_LT(rows[i].error, bound) << rows[i].variant << " level " << rows[i].level;
     if (i > 0 && rows[i].variant == rows[i - 1].variant) {
       EXPECT_LT(rows[i].error, rows[i - 1].error);
-      // Measured 1.31 and 1.16 for both variants.
+      // Measured 1.31 and 1.16 for CPDI and linear, 1.14 and 1.07 for the B-spline.
       EXPECT_GT(observed_order(rows[i - 1], rows[i]), 0.9);
     }
   }

@@ -29,7 +29,8 @@ std::optional<NumericalFailure> update_active_region(StepState<D>& state) {
 #pragma omp for schedule(static) nowait
     for (std::int64_t p = 0; p < n; ++p) {
       Vec<D> a = P.x[p], b = P.x[p];
-      stencil_bounds<D>(kind, P.x[p], P.domain[p], 0.5 * P.domain[p].diagonal().cwiseAbs(), a, b);
+      stencil_bounds<D>(kind, P.x[p], P.domain[p], 0.5 * P.domain[p].diagonal().cwiseAbs(),
+                        state.grid.cell_size, a, b);
       lo = lo.cwiseMin(a);
       hi = hi.cwiseMax(b);
       half_extent = std::max(half_extent, 0.5 * (b[0] - a[0]));

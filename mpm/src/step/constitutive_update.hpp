@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "fragmpm/mpm/damage_law.hpp"
+#include "fragmpm/mpm/phase_field.hpp"
 #include "step/step_state.hpp"
 
 namespace fragmpm::mpm {
@@ -31,6 +32,26 @@ inline Mat<D> trial_stress(const StepState<D>& state, std::int64_t p, double& ps
   return trial;
 }
 
+/// A particle of a phase-field material: the spectral split of its (Hencky) elastic energy
+/// ([KT19] eq. (14)), the history field H = max over time of ψ⁺ (the Kuhn–Tucker conditions of
+/// [KT19] §3.1, Alg. 1) when AdvanceDamage, and the stress g(d) σ⁺ + σ⁻ (eq. (15)-(16)) with the d
+/// of this step's phase-field solve. Nothing is booked as dissipation: the energy the phase field
+/// takes is its crack energy Ψ_f. The thermal module is refused with phase-field materials.
+template <int D, bool AdvanceDamage>
+inline ConstitutiveResult update_phase_field_particle(StepState<D>& state, std::int64_t p) {
+  auto& P = state.problem.particles;
+  const std::size_t material = static_cast<std::size_t>(P.material[p]);
+  const NeoHookean& model = state.models[material];
+  const double lambda = model.bulk_modulus - 2.0 * model.shear_modulus / 3.0;
+  const TensileSplit<D> split = hencky_tensile_split<D>(lambda, model.shear_modulus, P.F[p]);
+  if constexpr (AdvanceDamage)
+    P.damage_history[p] = std::max(P.damage_history[p], split.tensile_energy);
+  const double g =
+      phase_field_degradation(P.damage[p], state.phase_field->residual_stiffness[material]);
+  P.stress[p] = g * split.tensile_stress + split.compressive_stress;
+  return {g * split.tensile_energy + split.compressive_energy, 0.0};
+}
+
 /// AdvanceDamage: evaluate the damage law (the step); false keeps d (initial state, restart).
 /// `equivalent_stress`: when finite, the σ₁ that drives the damage law in place of the trial
 /// stress's own largest principal value (the nonlocal average, nonlocal_damage.cpp).
@@ -40,10 +61,12 @@ inline ConstitutiveResult update_constitutive(
     double equivalent_stress = std::numeric_limits<double>::quiet_NaN()) {
   auto& P = state.problem.particles;
   const int material = P.material[p];
+  const char law = state.material_damages[static_cast<std::size_t>(material)];
+  if (law == material_phase_field) return update_phase_field_particle<D, AdvanceDamage>(state, p);
   const NeoHookean& model = state.models[static_cast<std::size_t>(material)];
   double psi;
   const Mat<D> trial = trial_stress<D, Thermal>(state, p, psi);
-  if (!state.material_damages[static_cast<std::size_t>(material)]) {
+  if (!law) {
     P.stress[p] = trial;
     return {psi, 0.0};
   }

@@ -176,7 +176,8 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
 #define FRAGMPM_INSTANTIATE(D)        \
   FRAGMPM_INSTANTIATE_KIND(D, linear) \
   FRAGMPM_INSTANTIATE_KIND(D, ugimp)  \
-  FRAGMPM_INSTANTIATE_KIND(D, cpdi)
+  FRAGMPM_INSTANTIATE_KIND(D, cpdi)   \
+  FRAGMPM_INSTANTIATE_KIND(D, bspline2)
 FRAGMPM_INSTANTIATE(2)
 FRAGMPM_INSTANTIATE(3)
 #undef FRAGMPM_INSTANTIATE

@@ -16,6 +16,8 @@ inline void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<
     linear_stencil<D, Offsets>(P.x[p], grid, s);
   else if constexpr (Kind == ShapeFunctionKind::ugimp)
     ugimp_stencil<D, Offsets>(P.x[p], 0.5 * P.domain[p].diagonal().cwiseAbs(), grid, s);
+  else if constexpr (Kind == ShapeFunctionKind::bspline2)
+    bspline2_stencil<D, Offsets>(P.x[p], grid, s);
   else
     cpdi_stencil<D, Offsets>(P.x[p], P.domain[p], grid, s);
 }

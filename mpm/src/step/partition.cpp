@@ -195,7 +195,8 @@ void partition_nodes(StepState<D>& state) {
   template void update_damage_field<D>(StepState<D>&);                        \
   template void partition_nodes<D, ShapeFunctionKind::linear>(StepState<D>&); \
   template void partition_nodes<D, ShapeFunctionKind::ugimp>(StepState<D>&);  \
-  template void partition_nodes<D, ShapeFunctionKind::cpdi>(StepState<D>&);
+  template void partition_nodes<D, ShapeFunctionKind::cpdi>(StepState<D>&);   \
+  template void partition_nodes<D, ShapeFunctionKind::bspline2>(StepState<D>&);
 FRAGMPM_INSTANTIATE(2)
 FRAGMPM_INSTANTIATE(3)
 #undef FRAGMPM_INSTANTIATE

@@ -29,6 +29,13 @@ void update_load_forces(StepState<D>& state);
 template <int D>
 void apply_penalty_walls(StepState<D>& state);
 
+/// The phase field of this step ([KT19] §4.2-4.3, Alg. 1): assembles [KT19] eq. (56)-(57) from
+/// the particles' history field over this step's grid (active region and strips already built),
+/// solves it by conjugate gradients, and sets d and the crack energy Ψ_f (totals.fracture_energy).
+/// (phase_field_stage.cpp)
+template <int D, ShapeFunctionKind Kind>
+void solve_phase_field(StepState<D>& state);
+
 /// d̂_p and the kernel damage field with its gradient ([HH17] eq. (17)-(19)); sets
 /// partition.this_step. (damage_field_stage.cpp)
 template <int D>

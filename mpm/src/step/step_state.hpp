@@ -14,6 +14,7 @@
 #include "fragmpm/mpm/problem.hpp"
 #include "fragmpm/mpm/series.hpp"
 #include "fragmpm/mpm/shape_functions.hpp"
+#include "step/phase_field_state.hpp"
 #include "step/thermal_state.hpp"
 
 namespace fragmpm::mpm {
@@ -27,6 +28,7 @@ struct StepPlan {
   bool gap_test = false;            ///< position test of contact ([NBS18] eq. (8))
   bool principal_rule = false;      ///< nodal gradient = principal direction of the gradient tensor
   bool books_contact = false;       ///< two-field nodes or walls exist: book the contact energy
+  bool phase_field = false;         ///< some material has the phase-field law: the nodal solve runs
 };
 
 /// Bits of NodeFields::touched: which stage changed a node's velocities this step.
@@ -106,6 +108,8 @@ struct StepState {
   Problem<D> problem;
   StepPlan plan;
   std::vector<NeoHookean> models;
+  /// Per material: 0 no damage, 1 a damage law of damage_law.hpp, material_phase_field (2) the
+  /// phase field. The constitutive update reads this one byte per particle to pick its branch.
   std::vector<char> material_damages;
   /// Per material: the Rankine law runs on the nonlocal σ̄₁ (RankineSoftening::nonlocal).
   std::vector<char> material_nonlocal;
@@ -139,7 +143,8 @@ struct StepState {
   /// ψ_t per particle from the last constitutive update (thermal and damage only): the damage
   /// heat of the next thermal stage is booked from it.
   std::vector<double> degradable;
-  std::unique_ptr<ThermalState<D>> thermal;  ///< exists only when the scene needs it
+  std::unique_ptr<ThermalState<D>> thermal;         ///< exists only when the scene needs it
+  std::unique_ptr<PhaseFieldState<D>> phase_field;  ///< exists only with a phase-field material
 
   int fields() const { return partition.this_step ? 2 : 1; }
   std::size_t node_count() const { return nodes.mass[0].size(); }

@@ -367,14 +367,16 @@ void thermal_finish(StepState<D>& state, double dt) {
 #define FRAGMPM_INSTANTIATE_KIND(D, K, PART)                                 \
   template void thermal_begin<D, ShapeFunctionKind::K, PART>(StepState<D>&); \
   template void thermal_finish<D, ShapeFunctionKind::K, PART>(StepState<D>&, double);
-#define FRAGMPM_INSTANTIATE(D)               \
-  template struct ThermalState<D>;           \
-  FRAGMPM_INSTANTIATE_KIND(D, linear, false) \
-  FRAGMPM_INSTANTIATE_KIND(D, linear, true)  \
-  FRAGMPM_INSTANTIATE_KIND(D, ugimp, false)  \
-  FRAGMPM_INSTANTIATE_KIND(D, ugimp, true)   \
-  FRAGMPM_INSTANTIATE_KIND(D, cpdi, false)   \
-  FRAGMPM_INSTANTIATE_KIND(D, cpdi, true)
+#define FRAGMPM_INSTANTIATE(D)                 \
+  template struct ThermalState<D>;             \
+  FRAGMPM_INSTANTIATE_KIND(D, linear, false)   \
+  FRAGMPM_INSTANTIATE_KIND(D, linear, true)    \
+  FRAGMPM_INSTANTIATE_KIND(D, ugimp, false)    \
+  FRAGMPM_INSTANTIATE_KIND(D, ugimp, true)     \
+  FRAGMPM_INSTANTIATE_KIND(D, cpdi, false)     \
+  FRAGMPM_INSTANTIATE_KIND(D, cpdi, true)      \
+  FRAGMPM_INSTANTIATE_KIND(D, bspline2, false) \
+  FRAGMPM_INSTANTIATE_KIND(D, bspline2, true)
 FRAGMPM_INSTANTIATE(2)
 FRAGMPM_INSTANTIATE(3)
 #undef FRAGMPM_INSTANTIATE

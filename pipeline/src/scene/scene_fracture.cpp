@@ -98,10 +98,54 @@ void check_softening(const Section& m, const mpm::MaterialSpec& spec,
 
 const std::vector<std::string_view>& damage_keys() {
   static const std::vector<std::string_view> keys = {
-      "damage",      "strength", "fracture_energy",       "crack_speed",
-      "degradation", "weibull",  "characteristic_length", "averaging"};
+      "damage",       "strength",          "fracture_energy",       "crack_speed",
+      "degradation",  "weibull",           "characteristic_length", "averaging",
+      "length_scale", "residual_stiffness"};
   return keys;
 }
+
+namespace {
+
+/// The keys of damage = "phase-field" ([KT19] §2.1): l₀, G_c and k_f. The other laws' keys are
+/// refused, since nothing would read them.
+mpm::PhaseField read_phase_field(const Section& m, const mpm::GridSpec<2>& grid) {
+  for (std::string_view k :
+       {"strength", "weibull", "crack_speed", "characteristic_length", "averaging", "degradation"})
+    if (m.has(k))
+      m.fail(k, "expected " + std::string(k) +
+                    " only with damage = \"rankine\" or \"time-to-failure\", got it with "
+                    "\"phase-field\" (the phase field needs length_scale, fracture_energy and "
+                    "optionally residual_stiffness)");
+  mpm::PhaseField pf;
+  if (!m.has("length_scale"))
+    m.fail("length_scale",
+           "missing required key: expected length_scale (the phase-field length l0 of [KT19] eq. "
+           "(4), a length such as \"0.5 mm\", at least the cell size " +
+               si(grid.cell_size, "m") + ") for damage = \"phase-field\"");
+  pf.length_scale = m.quantity("length_scale", QK::length);
+  if (!(pf.length_scale > 0.0)) m.expected("length_scale", "a positive length l0");
+  // The crack profile exp(−|x|/(2 l₀)) must be resolved by the grid: below one cell the nodal
+  // field cannot carry it and the crack energy grows with h / l₀ (phase_field.hpp).
+  if (pf.length_scale < grid.cell_size)
+    m.fail("length_scale",
+           "expected a phase-field length l0 no smaller than the cell size: the smallest "
+           "admissible length_scale is " +
+               si(grid.cell_size, "m") + " (grid.cell_size), got " + si(pf.length_scale, "m"));
+  if (!m.has("fracture_energy"))
+    m.fail("fracture_energy",
+           "missing required key: expected fracture_energy (the critical energy release rate "
+           "G_c, an energy per area such as \"2.7 J/m2\") for damage = \"phase-field\"");
+  pf.fracture_energy = m.quantity("fracture_energy", QK::energy_per_area);
+  if (!(pf.fracture_energy > 0.0))
+    m.expected("fracture_energy", "a positive critical energy release rate G_c");
+  pf.residual_stiffness = m.optional_number("residual_stiffness").value_or(0.0);
+  if (!(pf.residual_stiffness >= 0.0 && pf.residual_stiffness < 1.0))
+    m.expected("residual_stiffness",
+               "a residual stiffness 0 <= k_f < 1 (g = (1 - k_f)(1 - d)^2 + k_f, [KT19] eq. (15))");
+  return pf;
+}
+
+}  // namespace
 
 void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double> thickness,
                  const mpm::GridSpec<2>& grid, double particle_spacing) {
@@ -110,13 +154,21 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     for (std::string_view k : damage_keys())
       if (k != "damage" && m.has(k))
         m.fail(k, "expected " + std::string(k) +
-                      " only with a damage law (damage = \"rankine\" or \"time-to-failure\"), "
-                      "got it with damage = \"none\"");
+                      " only with a damage law (damage = \"rankine\", \"time-to-failure\" or "
+                      "\"phase-field\"), got it with damage = \"none\"");
     spec.damage = mpm::NoDamage{};
     return;
   }
+  if (law == "phase-field") {
+    spec.damage = read_phase_field(m, grid);
+    return;
+  }
   if (law != "rankine" && law != "time-to-failure")
-    m.expected("damage", "one of \"none\", \"rankine\", \"time-to-failure\"");
+    m.expected("damage", "one of \"none\", \"rankine\", \"time-to-failure\", \"phase-field\"");
+  for (std::string_view k : {"length_scale", "residual_stiffness"})
+    if (m.has(k))
+      m.fail(k, "expected " + std::string(k) +
+                    " only with damage = \"phase-field\", got it with \"" + law + "\"");
 
   // Strength: uniform σ_f, or a Weibull field ([HH17] eq. (25)) whose σ̄_f may come from `strength`.
   if (!m.has("strength") && !m.has("weibull"))
@@ -210,7 +262,8 @@ void assign_strengths(mpm::Problem<2>& problem, const std::vector<Section>& sect
     std::vector<std::size_t> mine;
     for (std::size_t p = 0; p < P.size(); ++p)
       if (static_cast<std::size_t>(P.material[p]) == m) mine.push_back(p);
-    if (!spec.damages()) {
+    // Strength drives only the damage laws of damage_law.hpp; the phase field never reads it.
+    if (!spec.damages() || std::holds_alternative<mpm::PhaseField>(spec.damage)) {
       for (std::size_t p : mine) P.strength[p] = std::numeric_limits<double>::infinity();
       continue;
     }

@@ -79,8 +79,10 @@ int read_grid(const Section& g, mpm::GridSpec<2>& grid) {
     grid.shape_function = mpm::ShapeFunctionKind::linear;
   else if (sf == "ugimp")
     grid.shape_function = mpm::ShapeFunctionKind::ugimp;
+  else if (sf == "bspline2")
+    grid.shape_function = mpm::ShapeFunctionKind::bspline2;
   else
-    g.expected("shape_function", "one of \"cpdi\", \"linear\", \"ugimp\"");
+    g.expected("shape_function", "one of \"cpdi\", \"linear\", \"ugimp\", \"bspline2\"");
   const std::string outside = g.optional_string("outside").value_or("stop");
   if (outside == "stop")
     grid.outside = mpm::OutsidePolicy::stop;
@@ -520,10 +522,19 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
     wall_names.add(w, wall.name);
     if (auto c = read_wall_thermal(w, wall)) wall_thermal.push_back(*c);
   }
-  if (auto contact = top.optional_table("contact")) {
+  const std::optional<Section> contact = top.optional_table("contact");
+  if (contact) {
     problem.contact = read_contact(*contact);
     read_contact_conductance(*contact, problem.thermal);
   }
+  // An AT2 phase field approaches d = 1 only as H grows without bound (phase_field.hpp), so a
+  // crack of a phase-field material becomes separable at D_cr = 0.95 unless the scene says
+  // otherwise.
+  const bool phase_field = std::any_of(
+      problem.materials.begin(), problem.materials.end(),
+      [](const mpm::MaterialSpec& m) { return std::holds_alternative<mpm::PhaseField>(m.damage); });
+  if (phase_field && !(contact && contact->has("critical_damage")))
+    problem.contact.critical_damage = mpm::phase_field_critical_damage;
 
   if (!top.has("stop"))
     top.fail("stop",
@@ -575,6 +586,17 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
             read_body_temperature(grain_entries[g].section);
     compile_thermal(problem, material_sections, body_temperature, wall_thermal);
   }
+  // The phase field has no damage heating and its split does not carry the thermal stress.
+  if (problem.thermal.active())
+    for (std::size_t m = 0; m < problem.materials.size(); ++m)
+      if (std::holds_alternative<mpm::PhaseField>(problem.materials[m].damage))
+        material_sections[m].fail(
+            "damage",
+            "expected a damage law other than \"phase-field\" in a scene whose thermal "
+            "module is on (" +
+                problem.thermal.reason +
+                "): the phase field has no damage heating and its tension-compression "
+                "split carries no thermal stress yet");
 
   if (time) check_fixed_dt(problem, *time);
   return problem;

@@ -80,7 +80,7 @@ std::vector<VerifyRow> verify_bar(const VerifyOptions& options) {
   const std::vector<int> levels =
       options.quick ? std::vector<int>{10, 20, 40} : std::vector<int>{10, 20, 40, 80, 160};
   std::vector<VerifyRow> rows;
-  for (const std::string variant : {"cpdi", "linear"})
+  for (const std::string variant : {"cpdi", "linear", "bspline2"})
     for (std::size_t l = 0; l < levels.size(); ++l)
       rows.push_back(run_bar_level(variant, static_cast<int>(l), levels[l]));
   return rows;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fragmpm/mpm/neo_hookean.hpp"
+#include "fragmpm/mpm/phase_field.hpp"
 #include "fragmpm/mpm/types.hpp"
 
 namespace fragmpm::mpm {
@@ -30,7 +31,9 @@ struct TimeToFailure {
   double crack_speed = 0.0;  ///< c_f [m/s]
 };
 
-using DamageLaw = std::variant<NoDamage, RankineSoftening, TimeToFailure>;
+/// PhaseField (phase_field.hpp): the AT2 phase field of [KT19], solved on the grid each step; its
+/// particle update (history field, split, degradation) is not update_damage's.
+using DamageLaw = std::variant<NoDamage, RankineSoftening, TimeToFailure, PhaseField>;
 
 /// How damage degrades the stress.
 enum class Degradation {

@@ -17,7 +17,10 @@
 
 namespace fragmpm::mpm {
 
-enum class ShapeFunctionKind { linear, ugimp, cpdi };
+/// linear: multilinear hats; ugimp: hats convolved with an undeformed box [BK04]; cpdi: hats
+/// averaged over the convected parallelogram domain [SBB11]; bspline2: the C¹ quadratic B-spline
+/// of the grid (support three nodes per direction), the basis of [KT19] §4.
+enum class ShapeFunctionKind { linear, ugimp, cpdi, bspline2 };
 
 /// Compressible neo-Hookean ([XLS21] eq. (16)-(17)), given by bulk and shear modulus.
 struct MaterialSpec {

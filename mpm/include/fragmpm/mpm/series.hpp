@@ -32,7 +32,11 @@ struct EnergyAccumulators {
   /// Kinetic energy the grid-to-particle transfer removes: FLIP's smoothing of the nodal
   /// increments, PIC's projection (step/transfer_energy.cpp) [J].
   double transfer_dissipation = 0.0;
-  double initial_energy = 0.0;  ///< kinetic + strain at step 0 [J]
+  double initial_energy = 0.0;  ///< kinetic + strain + fracture_energy at step 0 [J]
+  /// Ψ_f, the crack energy of the phase field after the last solve ([KT19] eq. (3)) [J]. Not a
+  /// running sum but a state (the energy the cracks hold), kept here because a restart cannot
+  /// recompute it without the nodal field and must resume the balance exactly.
+  double fracture_energy = 0.0;
   LostParticles lost;
 };
 
@@ -43,8 +47,9 @@ struct SeriesRow {
   double time = 0.0, dt = 0.0;
   double kinetic = 0.0, strain = 0.0, thermal = 0.0;
   EnergyAccumulators totals;
-  /// (kinetic + strain + dissipated + friction_work + contact_dissipation + transfer_dissipation +
-  /// lost kinetic + lost strain) − (initial + wall_work + gravity_work + load_work): zero for an
+  /// (kinetic + strain + fracture_energy + dissipated + friction_work + contact_dissipation +
+  /// transfer_dissipation + lost kinetic + lost strain) − (initial + wall_work + gravity_work +
+  /// load_work): zero for an
   /// exact conservative scheme. What remains is the explicit step's own energy error (large at
   /// nodes an impact accelerates). With APIC the kinetic energy includes the affine part ½ m tr(C Q
   /// Cᵀ).

@@ -1,5 +1,6 @@
 #pragma once
-// Particle–node weights S̄_ip and gradients ∇S̄_ip for the linear, uGIMP and CPDI shape functions.
+// Particle–node weights S̄_ip and gradients ∇S̄_ip for the linear, uGIMP, CPDI and quadratic
+// B-spline shape functions.
 // A stencil lists (node, weight, gradient) entries; a node may appear more than once (CPDI corners
 // sharing a cell), which is harmless because every use is a sum over the entries.
 #include <array>
@@ -79,6 +80,29 @@ inline void gimp_1d(double xi, double h, double lp, double& w, double& dw) {
     dw = 0.0;
   }
 }
+/// Quadratic B-spline on a uniform grid, in cell units: for t = (x − origin)/h the three nodes
+/// first = floor(t − ½), first + 1, first + 2 carry the weights
+///   N₀ = ½ (3/2 − f)², N₁ = ¾ − (f − 1)², N₂ = ½ (f − ½)²,  f = t − first ∈ [½, 3/2),
+/// the pieces of N(r) = ¾ − r² (|r| < ½), ½ (3/2 − |r|)² (½ ≤ |r| < 3/2) at the distances r = f,
+/// f − 1, f − 2. They sum to 1 and reproduce t (Σ N_k (first + k) = first + f), and N is C¹ across
+/// the knots at half cells, so the gradient does not jump when a particle crosses a cell face.
+/// `weight`, `slope` (dN/dt) and `curvature` (d²N/dt²) per node, in cell units.
+struct QuadraticBspline1d {
+  std::int64_t first = 0;
+  std::array<double, 3> weight{}, slope{}, curvature{};
+};
+
+inline QuadraticBspline1d quadratic_bspline_1d(double t) {
+  QuadraticBspline1d b;
+  const double start = std::floor(t - 0.5);
+  b.first = static_cast<std::int64_t>(start);
+  const double f = t - start;
+  const double a = 1.5 - f, c = f - 1.0, e = f - 0.5;
+  b.weight = {0.5 * a * a, 0.75 - c * c, 0.5 * e * e};
+  b.slope = {-a, -2.0 * c, e};
+  b.curvature = {1.0, -2.0, 1.0};
+  return b;
+}
 }  // namespace detail
 
 /// Standard linear (bilinear in 2D) shape functions at the particle position.
@@ -137,6 +161,44 @@ inline void ugimp_stencil(const Vec<D>& x, const Vec<D>& half_length, const Grid
   }
 }
 
+/// C¹ quadratic B-spline ([KT19] §4, eq. (34)-(35)): the tensor product of
+/// detail::quadratic_bspline_1d over the directions, 3^D nodes. The grid is unbounded (the active
+/// region is sized around the particles' stencils, see stencil_bounds), so every particle sees the
+/// uniform, interior form of the basis: partition of unity and linear completeness hold everywhere,
+/// with no open knot vector at a domain edge.
+template <int D, bool Offsets = false>
+inline void bspline2_stencil(const Vec<D>& x, const GridIndex<D>& grid, Stencil<D>& stencil) {
+  std::array<detail::QuadraticBspline1d, D> axis;
+  for (int k = 0; k < D; ++k)
+    axis[k] = detail::quadratic_bspline_1d((x[k] - grid.origin[k]) * grid.inverse_cell_size);
+  int total = 1;
+  for (int k = 0; k < D; ++k) total *= 3;
+  stencil.count = total;
+  for (int e = 0; e < total; ++e) {
+    IVec<D> node;
+    std::array<int, D> local{};
+    int rest = e;
+    double value = 1.0;
+    for (int k = 0; k < D; ++k) {
+      local[k] = rest % 3;
+      rest /= 3;
+      node[k] = axis[k].first + local[k];
+      value *= axis[k].weight[local[k]];
+    }
+    Vec<D> gradient;
+    for (int k = 0; k < D; ++k) {
+      double g = axis[k].slope[local[k]] * grid.inverse_cell_size;
+      for (int j = 0; j < D; ++j)
+        if (j != k) g *= axis[j].weight[local[j]];
+      gradient[k] = g;
+    }
+    stencil.node[e] = grid.linear(node);
+    stencil.weight[e] = value;
+    stencil.gradient[e] = gradient;
+    if constexpr (Offsets) stencil.offset[e] = grid.position(node) - x;
+  }
+}
+
 /// CPDI ([XLS21] eq. (52)-(53); [HH17] §1.1). The domain is the parallelepiped spanned by the full
 /// edge vectors r_k (columns of `domain`), corners x ± r1/2 ± r2/2. Interpolating the hat N_i
 /// bilinearly between the corner values gives S̄_ip = mean_c N_i(x_c) and, by the divergence theorem
@@ -167,13 +229,22 @@ inline void cpdi_stencil(const Vec<D>& x, const Mat<D>& domain, const GridIndex<
   }
 }
 
-/// Axis-aligned bounds (lower, upper) of the region a particle's stencil touches [m].
+/// Axis-aligned bounds (lower, upper) of the region a particle's stencil touches [m], in the form
+/// the active region expects: the nodes of the cells holding `lower` and `upper` (plus one node of
+/// padding each side, added by the caller). For the quadratic B-spline the cell holding x − h/2
+/// starts at the stencil's first node floor(t − ½) and the cell holding x + h/2 ends at its last,
+/// first + 2, so the three-node support is covered and keeps the one node of padding.
 template <int D>
 inline void stencil_bounds(ShapeFunctionKind kind, const Vec<D>& x, const Mat<D>& domain,
-                           const Vec<D>& half_length, Vec<D>& lower, Vec<D>& upper) {
+                           const Vec<D>& half_length, double cell_size, Vec<D>& lower,
+                           Vec<D>& upper) {
   switch (kind) {
     case ShapeFunctionKind::linear:
       lower = upper = x;
+      return;
+    case ShapeFunctionKind::bspline2:
+      lower = x - Vec<D>::Constant(0.5 * cell_size);
+      upper = x + Vec<D>::Constant(0.5 * cell_size);
       return;
     case ShapeFunctionKind::ugimp:
       lower = x - half_length;

@@ -1,0 +1,307 @@
+// The phase-field stage ([KT19] §4.2-4.3, Alg. 1): at the start of a step, with the history field
+// H the last constitutive update left on the particles, assemble the nodal system of [KT19] eq.
+// (56)-(57) by particle quadrature, solve it with conjugate gradients, and interpolate d back to
+// the particles (eq. (53)); the mechanics of the step then degrade with g(d) (eq. (15)) in the
+// constitutive update. One unknown per node and body: each body has its own field (eq. (28)).
+//
+// With γ = 0, eq. (47) multiplied by G_c/(4 l₀) is, for every weight q,
+//   ∫ [(G_c/(4 l₀) + (1 − k_f) H) c q + G_c l₀ ∇c·∇q] dV = ∫ G_c/(4 l₀) q dV,
+// so K_IJ = Σ_p V_p [(G_c/(4 l₀) + (1 − k_f) H_p) S̄_Ip S̄_Jp + G_c l₀ ∇S̄_Ip·∇S̄_Jp] and
+// f_I = Σ_p V_p G_c/(4 l₀) S̄_Ip (eq. (57), (52)). The unknown is the paper's c = 1 − d, not d: the
+// history of an open crack grows without bound (H/(G_c/(4 l₀)) reaches 10⁴-10⁸), and in d the
+// right-hand side (1 − k_f) H would grow with it, so that the relative residual 10⁻⁶ of the
+// conjugate gradients would be met while the field away from the crack is still wrong. In c the
+// right-hand side is the same bounded G_c/(4 l₀) everywhere and H only stiffens the diagonal. The
+// integrals are taken over the reference configuration (V_p = V₀, gradients Fᵀ∇S̄), where the
+// history field and the stored energies of the constitutive update live (energies per reference
+// volume): at small strain this is the paper's form, and a crack band that opens keeps its energy
+// G_c per reference crack area instead of growing with the stretch of its particles.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "step/particle_loops.hpp"
+#include "step/stages.hpp"
+
+namespace fragmpm::mpm {
+
+namespace {
+
+/// The slot of node i that holds `field` (a body, or 0 when the bodies share one field).
+template <int D>
+inline int slot_of(const PhaseFieldState<D>& pf, std::size_t node, std::int32_t field) {
+  constexpr int K = PhaseFieldState<D>::slots;
+  const std::int32_t* fields = pf.node_body.data() + node * K;
+  for (int s = 0; s < K - 1; ++s)
+    if (fields[s] == field) return s;
+  return K - 1;
+}
+
+/// Enters `field` in the slots of `node`; false when they are all taken by other fields.
+template <int D>
+inline bool register_field(PhaseFieldState<D>& pf, std::size_t node, std::int32_t field) {
+  constexpr int K = PhaseFieldState<D>::slots;
+  std::int32_t* fields = pf.node_body.data() + node * K;
+  for (int k = 0; k < K; ++k) {
+    if (fields[k] == field) return true;
+    if (fields[k] < 0) {
+      fields[k] = field;
+      return true;
+    }
+  }
+  return false;
+}
+
+/// A stencil entry that contributes nothing (zero weight and gradient, e.g. the B-spline's end
+/// knot): skipped, so it never creates an unknown with an empty row.
+template <int D>
+inline bool empty_entry(const Stencil<D>& s, int e) {
+  return s.weight[e] == 0.0 && s.gradient[e].squaredNorm() == 0.0;
+}
+
+/// Index of node offset o ∈ [−reach, reach]^D in a row of the band.
+template <int D>
+inline int band_index(const IVec<D>& offset, int reach) {
+  int index = 0, stride = 1;
+  for (int k = 0; k < D; ++k) {
+    index += static_cast<int>(offset[k] + reach) * stride;
+    stride *= 2 * reach + 1;
+  }
+  return index;
+}
+
+/// Largest node offset between two entries of one particle's stencil, per direction.
+template <int D, ShapeFunctionKind Kind>
+int stencil_reach(const StepState<D>& state) {
+  if constexpr (Kind == ShapeFunctionKind::linear) return 1;    // 2 nodes per direction
+  if constexpr (Kind == ShapeFunctionKind::bspline2) return 2;  // 3 nodes
+  // uGIMP and CPDI: a stencil spans the cells of its bounds, lower … upper + 1 (cells).
+  const auto& P = state.problem.particles;
+  const std::int64_t n = static_cast<std::int64_t>(P.size());
+  double extent = 0.0;
+  const ShapeFunctionKind kind = Kind;
+#pragma omp parallel for reduction(max : extent) schedule(static)
+  for (std::int64_t p = 0; p < n; ++p) {
+    Vec<D> lower, upper;
+    stencil_bounds<D>(kind, P.x[p], P.domain[p], 0.5 * P.domain[p].diagonal().cwiseAbs(),
+                      state.grid.cell_size, lower, upper);
+    extent = std::max(extent, (upper - lower).maxCoeff() * state.grid.inverse_cell_size);
+  }
+  return static_cast<int>(std::ceil(extent)) + 1;
+}
+
+}  // namespace
+
+template <int D, ShapeFunctionKind Kind>
+void solve_phase_field(StepState<D>& state) {
+  PhaseFieldState<D>& pf = *state.phase_field;
+  auto& P = state.problem.particles;
+  const std::int64_t n = static_cast<std::int64_t>(P.size());
+  const auto& kind_of = state.material_damages;
+  auto is_phase_field = [&](std::int64_t p) {
+    return kind_of[static_cast<std::size_t>(P.material[p])] == material_phase_field;
+  };
+
+  // Without any history the solution is d = 0 (the right-hand side vanishes): no system to solve.
+  double largest_history = 0.0;
+#pragma omp parallel for reduction(max : largest_history) schedule(static)
+  for (std::int64_t p = 0; p < n; ++p)
+    if (is_phase_field(p)) largest_history = std::max(largest_history, P.damage_history[p]);
+  if (!(largest_history > 0.0)) {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t p = 0; p < n; ++p)
+      if (is_phase_field(p)) P.damage[p] = 0.0;
+    state.totals.fracture_energy = 0.0;
+    pf.iterations = 0;
+    pf.residual = 0.0;
+    return;
+  }
+
+  constexpr int K = PhaseFieldState<D>::slots;
+  const GridIndex<D>& grid = state.grid;
+  const std::size_t nodes = static_cast<std::size_t>(grid.node_count());
+
+  // 1. The bodies that reach each node, in the scatter's fixed order (thread-count independent).
+  //    Should more than `slots` bodies reach one node, this step's bodies share one field.
+  bool shared = false;
+  auto field_of = [&](std::int64_t p) { return shared ? std::int32_t{0} : P.body[p]; };
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    reset_array(pf.node_body, nodes * K, std::int32_t{-1});
+    int overflow = 0;
+    scatter_particles_where<D, Kind>(
+        state, is_phase_field, [&](std::int64_t p, const Stencil<D>& s) {
+          const std::int32_t field = field_of(p);
+          for (int e = 0; e < s.count; ++e)
+            if (!empty_entry(s, e) &&
+                !register_field(pf, static_cast<std::size_t>(s.node[e]), field)) {
+#pragma omp atomic write
+              overflow = 1;
+            }
+        });
+    if (!overflow) break;
+    shared = true;
+  }
+
+  // 2. Unknowns in node order (so the columns of every row come out sorted).
+  size_array(pf.node_unknown, nodes * K);
+  std::int64_t unknowns = 0;
+  for (std::size_t slot = 0; slot < nodes * K; ++slot)
+    pf.node_unknown[slot] = pf.node_body[slot] >= 0 ? static_cast<std::int32_t>(unknowns++) : -1;
+  const std::size_t m = static_cast<std::size_t>(unknowns);
+  size_array(pf.unknown_node, m);
+  size_array(pf.unknown_body, m);
+  for (std::size_t slot = 0; slot < nodes * K; ++slot)
+    if (pf.node_unknown[slot] >= 0) {
+      pf.unknown_node[static_cast<std::size_t>(pf.node_unknown[slot])] =
+          static_cast<std::int64_t>(slot / K);
+      pf.unknown_body[static_cast<std::size_t>(pf.node_unknown[slot])] = pf.node_body[slot];
+    }
+
+  // 3. Particle quadrature of [KT19] eq. (57) and (52) into the band rows, and the volume-weighted
+  //    projection of the particles' d as the initial guess.
+  pf.reach = stencil_reach<D, Kind>(state);
+  pf.band_width = 1;
+  for (int k = 0; k < D; ++k) pf.band_width *= 2 * pf.reach + 1;
+  const int width = pf.band_width, reach = pf.reach;
+  reset_array(pf.band, m * static_cast<std::size_t>(width), 0.0);
+  reset_array(pf.guess_weight, m, 0.0);
+  if (pf.rhs.size() != unknowns) {
+    pf.rhs.resize(unknowns);
+    pf.guess.resize(unknowns);
+    pf.solution.resize(unknowns);
+  }
+  pf.rhs.setZero();
+  pf.guess.setZero();
+  scatter_particles_where<D, Kind>(state, is_phase_field, [&](std::int64_t p, const Stencil<D>& s) {
+    const std::size_t material = static_cast<std::size_t>(P.material[p]);
+    const double volume = P.volume0[p];
+    const double drive = pf.drive_factor[material] * P.damage_history[p];  // (1 − k_f) H
+    const double source = volume * pf.local_coefficient[material];         // V G_c / (4 l₀)
+    const double local = source + volume * drive;
+    const double diffusion = volume * pf.gradient_coefficient[material];
+    const Mat<D> to_reference = P.F[p].transpose();  // ∇_X S̄ = Fᵀ ∇_x S̄
+    std::array<std::int32_t, Stencil<D>::capacity> row;
+    std::array<IVec<D>, Stencil<D>::capacity> node;
+    std::array<Vec<D>, Stencil<D>::capacity> gradient;
+    for (int e = 0; e < s.count; ++e) {
+      row[e] = -1;
+      if (empty_entry(s, e)) continue;
+      const std::size_t i = static_cast<std::size_t>(s.node[e]);
+      row[e] = pf.node_unknown[i * K + static_cast<std::size_t>(slot_of(pf, i, field_of(p)))];
+      node[e] = grid.global(s.node[e]);
+      gradient[e] = to_reference * s.gradient[e];
+    }
+    for (int e = 0; e < s.count; ++e) {
+      if (row[e] < 0) continue;
+      const std::size_t r = static_cast<std::size_t>(row[e]);
+      pf.rhs[row[e]] += source * s.weight[e];
+      pf.guess[row[e]] += volume * s.weight[e] * (1.0 - P.damage[p]);
+      pf.guess_weight[r] += volume * s.weight[e];
+      double* band = pf.band.data() + r * static_cast<std::size_t>(width);
+      for (int f = 0; f < s.count; ++f) {
+        if (row[f] < 0) continue;
+        band[band_index<D>(node[f] - node[e], reach)] +=
+            local * s.weight[e] * s.weight[f] + diffusion * gradient[e].dot(gradient[f]);
+      }
+    }
+  });
+
+  // 4. Compressed rows: the non-zero offsets of each band row, the column being the same body's
+  //    unknown at the offset node. A row without weight (a node only zero-gradient entries
+  //    touch) keeps c = 1 (d = 0) through a unit diagonal.
+  size_array(pf.outer, m + 1);
+  pf.outer[0] = 0;
+  for (std::size_t r = 0; r < m; ++r) {
+    const double* band = pf.band.data() + r * static_cast<std::size_t>(width);
+    int count = 0;
+    for (int b = 0; b < width; ++b) count += band[b] != 0.0;
+    pf.outer[r + 1] = pf.outer[r] + std::max(count, 1);
+  }
+  const std::size_t nonzeros = static_cast<std::size_t>(pf.outer[m]);
+  size_array(pf.inner, nonzeros);
+  size_array(pf.values, nonzeros);
+  const int centre = band_index<D>(IVec<D>::Zero(), reach);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t rr = 0; rr < unknowns; ++rr) {
+    const std::size_t r = static_cast<std::size_t>(rr);
+    const double* band = pf.band.data() + r * static_cast<std::size_t>(width);
+    std::size_t at = static_cast<std::size_t>(pf.outer[r]);
+    if (pf.outer[r + 1] - pf.outer[r] == 1 && band[centre] == 0.0) {
+      pf.inner[at] = static_cast<int>(r);
+      pf.values[at] = 1.0;
+      pf.rhs[rr] = 1.0;
+      continue;
+    }
+    const IVec<D> here = grid.global(pf.unknown_node[r]);
+    const std::int32_t body = pf.unknown_body[r];
+    for (int b = 0; b < width; ++b) {
+      if (band[b] == 0.0) continue;
+      IVec<D> there = here;
+      for (int k = 0, rest = b; k < D; ++k, rest /= 2 * reach + 1)
+        there[k] += rest % (2 * reach + 1) - reach;
+      const std::size_t j = static_cast<std::size_t>(grid.linear(there));
+      pf.inner[at] = pf.node_unknown[j * K + static_cast<std::size_t>(slot_of(pf, j, body))];
+      pf.values[at] = band[b];
+      ++at;
+    }
+  }
+
+  // 5. Conjugate gradients from the projected c = 1 − d ([KT19] §4.3: tol_c = 10⁻⁶). K is
+  //    symmetric positive definite (a weighted mass matrix plus a Laplacian).
+  for (std::size_t r = 0; r < m; ++r)
+    pf.guess[static_cast<Eigen::Index>(r)] =
+        pf.guess_weight[r] > 0.0 ? pf.guess[static_cast<Eigen::Index>(r)] / pf.guess_weight[r]
+                                 : 1.0;
+  const Eigen::Map<const typename PhaseFieldState<D>::Matrix> matrix(
+      unknowns, unknowns, static_cast<Eigen::Index>(nonzeros), pf.outer.data(), pf.inner.data(),
+      pf.values.data());
+  pf.solver.setTolerance(phase_field_tolerance);
+  pf.solver.compute(matrix);
+  pf.solution = pf.solver.solveWithGuess(pf.rhs, pf.guess);
+  pf.iterations = static_cast<int>(pf.solver.iterations());
+  pf.residual = pf.solver.error();
+
+  // 6. d = 1 − c and ∇d at the particles (eq. (53)-(54)) and the crack energy Ψ_f = Σ V₀ G_c (d²/(4
+  // l₀) +
+  //    l₀ |∇d|²) of the discrete field (eq. (3)-(4)). The interpolant may stray outside [0, 1]
+  //    by the consistent mass's undershoot; the particles keep d clamped to it.
+  double crack_energy = 0.0;
+  const Eigen::VectorXd& c = pf.solution;
+#pragma omp parallel reduction(+ : crack_energy)
+  {
+    Stencil<D> s;
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < n; ++p) {
+      if (!is_phase_field(p)) continue;
+      fill_stencil<D, Kind>(P, p, grid, s);
+      double value = 0.0;
+      Vec<D> gradient = Vec<D>::Zero();
+      for (int e = 0; e < s.count; ++e) {
+        if (empty_entry(s, e)) continue;
+        const std::size_t i = static_cast<std::size_t>(s.node[e]);
+        const double nodal =
+            1.0 - c[pf.node_unknown[i * K + static_cast<std::size_t>(slot_of(pf, i, field_of(p)))]];
+        value += s.weight[e] * nodal;
+        gradient += nodal * s.gradient[e];
+      }
+      gradient = P.F[p].transpose() * gradient;
+      const std::size_t material = static_cast<std::size_t>(P.material[p]);
+      const double l0 = pf.length_scale[material];
+      crack_energy += P.volume0[p] * pf.fracture_energy[material] *
+                      (value * value / (4.0 * l0) + l0 * gradient.squaredNorm());
+      P.damage[p] = std::clamp(value, 0.0, 1.0);
+    }
+  }
+  state.totals.fracture_energy = crack_energy;
+}
+
+#define FRAGMPM_INSTANTIATE(D)                                                  \
+  template void solve_phase_field<D, ShapeFunctionKind::linear>(StepState<D>&); \
+  template void solve_phase_field<D, ShapeFunctionKind::ugimp>(StepState<D>&);  \
+  template void solve_phase_field<D, ShapeFunctionKind::cpdi>(StepState<D>&);   \
+  template void solve_phase_field<D, ShapeFunctionKind::bspline2>(StepState<D>&);
+FRAGMPM_INSTANTIATE(2)
+FRAGMPM_INSTANTIATE(3)
+#undef FRAGMPM_INSTANTIATE
+
+}  // namespace fragmpm::mpm
