@@ -32,7 +32,11 @@ double nodal_kinetic_energy_change(const StepState<D>& state) {
     const auto& momentum = N.momentum[f];
     const auto& velocity = N.velocity[f];
     const auto& velocity_lumped = N.velocity_lumped[f];
-#pragma omp parallel for reduction(+ : change) schedule(static)
+    // Each field's sum starts from zero: OpenMP adds the threads' partial sums to the shared value
+    // in the order the threads finish, which is exact for two partial sums and zero but not when
+    // the first field's total is already there (a restart would then differ in the last bit).
+    double field_change = 0.0;
+#pragma omp parallel for reduction(+ : field_change) schedule(static)
     for (std::int64_t i = 0; i < nodes; ++i) {
       const double m = mass[i];
       if (!(m > negligible)) continue;
@@ -40,8 +44,9 @@ double nodal_kinetic_energy_change(const StepState<D>& state) {
       const Vec<D> received = velocity[i] - velocity_lumped[i];
       const double flip = m * (lumped.dot(received) + 0.5 * received.squaredNorm());
       const double projected = 0.5 * m * (velocity[i].squaredNorm() - lumped.squaredNorm());
-      change += (1.0 - pic) * flip + pic * projected;
+      field_change += (1.0 - pic) * flip + pic * projected;
     }
+    change += field_change;
   }
   return change;
 }

@@ -25,6 +25,10 @@ const std::vector<VerifyCase>& verify_cases() {
        "uniform bar with a weaker column pulled apart: damage dissipation vs G_f x height, three "
        "resolutions",
        verify_bar_tension},
+      {"phase-field-bar",
+       "AT2 phase field: imposed crack profile vs exp(-|x|/(2 l0)) and its energy, and the crack "
+       "energy of a bar pulled apart vs G_c x height, three resolutions",
+       verify_phase_field_bar},
       {"kalthoff", "P1 Kalthoff-Winkler plate: crack angle and crack speed", verify_kalthoff},
       {"brazilian",
        "P5 dynamic Brazilian disk: fragment count, mean size and speed at two resolutions, three "

@@ -73,6 +73,10 @@ std::vector<VerifyRow> verify_notched_bar(const VerifyOptions& options);
 /// G_f × height at three resolutions, and the width of the fully damaged band against l_ch.
 std::vector<VerifyRow> verify_bar_tension(const VerifyOptions& options);
 
+/// The AT2 phase field ([KT19]): the profile of an imposed crack against its closed form at three
+/// resolutions, and the crack energy of a bar pulled apart against G_c × height
+/// (verify_phase_field.hpp, docs/verification.md).
+std::vector<VerifyRow> verify_phase_field_bar(const VerifyOptions& options);
 /// P1: Kalthoff–Winkler crack angle and speed ([XLS21] §4.3; [HH17] §3.2).
 std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options);
 /// P5: Brazilian disk fragment statistics at two resolutions, three Weibull seeds, partitioned and

@@ -1,0 +1,37 @@
+#pragma once
+// `fragmpm verify phase-field-bar` (docs/verification.md): closed-form checks of the AT2 phase
+// field
+// ([KT19]) — the profile of an imposed crack, and the crack energy of a bar pulled apart.
+#include <string>
+#include <vector>
+
+#include "fragmpm/pipeline/verify.hpp"
+
+namespace fragmpm::pipeline {
+
+/// An imposed straight crack on a strip (l₀ = 1 mm, G_c = 100 J/m², 2 particles per cell): the
+/// particle column at x = 0 carries a history 10⁸ G_c/(4 l₀), the phase field is solved once, and
+/// the particles' d is compared with d = cosh((a − |x|)/(2 l₀)) / cosh(a/(2 l₀)), the solution
+/// of [KT19] eq. (20) with d(0) = 1 and no flux at the strip's ends x = ±a (a ≈ 10 l₀; the
+/// exp(−|x|/(2 l₀)) of an infinite bar to 10⁻⁴).
+struct CrackProfile {
+  double max_error = 0.0;     ///< largest |d − d_exact| over the particles
+  double rms_error = 0.0;     ///< root mean square of d − d_exact over the particles
+  double energy_ratio = 0.0;  ///< Ψ_f / (G_c × strip height)
+  long long particles = 0;
+  double wall_seconds = 0.0;
+};
+
+/// `shape`: a [grid] shape_function name.
+CrackProfile phase_field_crack_profile(double cell_size, const std::string& shape);
+
+/// One level of the pulled bar (scenes/verify/phase-field-bar.toml): `variant` "seeded" (a partial
+/// crack, d ≈ ½, imposed at mid-length by a history G_c / s on one particle column; grips at
+/// 0.5 m/s; partitioned), "seeded-one-field" (the same with partitioning off) or "unseeded" (no
+/// imperfection, grips at 1 m/s). Rows: crack energy / (G_c × height) (with the 5 % target for
+/// "seeded"), the bulk's share of it, and the balance error / input. std::invalid_argument for an
+/// unknown variant.
+std::vector<VerifyRow> phase_field_bar_level(const std::string& variant, int level,
+                                             double cell_size);
+
+}  // namespace fragmpm::pipeline
