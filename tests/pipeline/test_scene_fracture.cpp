@@ -179,6 +179,24 @@ TEST(SceneFracture, PhaseFieldMaterialAndItsDefaults) {
   EXPECT_TRUE(listed);
 }
 
+TEST(SceneFracture, AnisotropicPhaseFieldNeedsTheBspline) {
+  const std::string text = replace(
+      with_material_keys(
+          "damage = \"phase-field\"\nlength_scale = \"1 mm\"\nfracture_energy = \"0.1 "
+          "N/mm\"\nanisotropy = { gamma_1111 = 1, gamma_2222 = 80, gamma_1212 = 74, orientation "
+          "= \"30 deg\" }"),
+      "max = [\"20 mm\", \"20 mm\"]",
+      "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"bspline2\"");
+  const mpm::Problem<2> p = fp::parse_scene(text, "aniso.toml");
+  const auto& law = std::get<mpm::PhaseField>(p.materials[0].damage);
+  ASSERT_TRUE(law.anisotropic);
+  EXPECT_EQ(law.anisotropy.gamma_1111, 1.0);
+  EXPECT_EQ(law.anisotropy.gamma_2222, 80.0);
+  EXPECT_EQ(law.anisotropy.gamma_1122, 0.0);  // the default
+  EXPECT_EQ(law.anisotropy.gamma_1212, 74.0);
+  EXPECT_NEAR(law.anisotropy.orientation, std::acos(-1.0) / 6.0, 1e-15);
+}
+
 TEST(SceneFracture, WeibullStrengthsAreSeededPerParticleDraws) {
   const std::string weibull =
       "damage = \"time-to-failure\"\ncrack_speed = \"2000 m/s\"\n"
@@ -597,6 +615,30 @@ std::vector<BadFractureScene> bad_scenes() {
        "expected length_scale only with damage = \"phase-field\", got it with \"rankine\""},
       {"length_scale_without_damage", with_material_keys("length_scale = \"1 mm\""), "length_scale",
        "materials[0].length_scale", "only with a damage law"},
+      {"anisotropy_without_bspline",
+       with_material_keys(phase_field + "\nanisotropy = { gamma_1111 = 1, gamma_2222 = 1, "
+                                        "gamma_1212 = 74 }"),
+       "anisotropy", "materials[0].anisotropy",
+       "expected the anisotropic phase field only with [grid] shape_function = \"bspline2\""},
+      {"anisotropy_indefinite",
+       replace(with_material_keys(phase_field + "\nanisotropy = { gamma_1111 = 1, gamma_2222 = 1, "
+                                                "gamma_1122 = 2, gamma_1212 = 74 }"),
+               "max = [\"20 mm\", \"20 mm\"]",
+               "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"bspline2\""),
+       "anisotropy", "materials[0].anisotropy.gamma_1122",
+       "|gamma_1122| <= sqrt(gamma_1111 gamma_2222)"},
+      {"anisotropy_negative",
+       replace(with_material_keys(phase_field + "\nanisotropy = { gamma_1111 = -1, gamma_2222 = 1, "
+                                                "gamma_1212 = 74 }"),
+               "max = [\"20 mm\", \"20 mm\"]",
+               "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"bspline2\""),
+       "anisotropy", "materials[0].anisotropy.gamma_1111", "a non-negative component"},
+      {"anisotropy_with_rankine",
+       replace(
+           kScene, "damage = \"rankine\"",
+           "damage = \"rankine\"\nanisotropy = { gamma_1111 = 1, gamma_2222 = 1, gamma_1212 = 1 }"),
+       "anisotropy", "materials[0].anisotropy",
+       "expected anisotropy only with damage = \"phase-field\""},
       {"phase_field_with_thermal",
        with_material_keys(phase_field + "\nheat_capacity = \"700 J/(kg K)\"\nconductivity = \"1 "
                                         "W/(m K)\""),
