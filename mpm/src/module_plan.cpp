@@ -60,9 +60,10 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   for (const auto& m : problem.materials)
     if (const auto* law = std::get_if<PhaseField>(&m.damage)) {
       char text[160];
-      std::snprintf(text, sizeof text, "%s'%s' (l0 = %.4g m, G_c = %.4g J/m2, k_f = %.3g)",
+      std::snprintf(text, sizeof text, "%s'%s' (l0 = %.4g m, G_c = %.4g J/m2, k_f = %.3g%s)",
                     phase_field_reason.empty() ? "" : ", ", m.name.c_str(), law->length_scale,
-                    law->fracture_energy, law->residual_stiffness);
+                    law->fracture_energy, law->residual_stiffness,
+                    law->anisotropic ? ", fourth-order anisotropic" : "");
       phase_field_reason += text;
     }
   plan.push_back(

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 
 #include "fragmpm/mpm/thermal.hpp"
 #include "step/affine_motion.hpp"
@@ -89,6 +90,8 @@ struct Solver<D>::Impl {
     for (auto* v : {&pf.local_coefficient, &pf.gradient_coefficient, &pf.drive_factor,
                     &pf.residual_stiffness, &pf.fracture_energy, &pf.length_scale})
       v->assign(materials, 0.0);
+    pf.anisotropic.assign(materials, 0);
+    pf.fourth_order.assign(materials, Eigen::Matrix3d::Zero());
     for (std::size_t m = 0; m < materials; ++m)
       if (const auto* law = std::get_if<PhaseField>(&s.problem.materials[m].damage)) {
         pf.local_coefficient[m] = law->fracture_energy / (4.0 * law->length_scale);
@@ -97,6 +100,18 @@ struct Solver<D>::Impl {
         pf.residual_stiffness[m] = law->residual_stiffness;
         pf.fracture_energy[m] = law->fracture_energy;
         pf.length_scale[m] = law->length_scale;
+        if (law->anisotropic) {
+          // The fourth-order term needs the second derivatives of a C¹ basis (scene_fracture.cpp
+          // refuses the other kernels and 3D has no Voigt form here).
+          if (D != 2 || s.problem.grid.shape_function != ShapeFunctionKind::bspline2)
+            throw std::invalid_argument(
+                "material '" + s.problem.materials[m].name +
+                "': the anisotropic phase field needs shape_function = \"bspline2\" in 2D");
+          pf.anisotropic[m] = 1;
+          const double l0 = law->length_scale;
+          pf.fourth_order[m] =
+              law->fracture_energy * l0 * l0 * l0 * phase_field_anisotropy_global(law->anisotropy);
+        }
       }
     s.totals.fracture_energy = 0.0;
     const auto& P = s.problem.particles;

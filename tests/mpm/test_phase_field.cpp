@@ -87,6 +87,50 @@ TEST(PhaseFieldSplit, SmallStrainIsThePapersSpectralSplit) {
   EXPECT_EQ(compressed.tensile_stress.norm(), 0.0);
 }
 
+TEST(PhaseFieldAnisotropy, StraightCrackEnergiesAreThePapersSurfaceEnergies) {
+  // Closed forms: γ_n = 0 gives G_c, γ_n = 1 gives √2 G_c (profile (1 + u) e^(−u)).
+  EXPECT_DOUBLE_EQ(mpm::phase_field_straight_crack_energy(0.0), 1.0);
+  EXPECT_NEAR(mpm::phase_field_straight_crack_energy(1.0), std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(mpm::phase_field_straight_crack_energy(1.0 - 1e-9), std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(mpm::phase_field_straight_crack_energy(1.0 + 1e-9), std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(mpm::phase_field_straight_crack_profile(1.0, std::sqrt(2.0)), 2.0 / std::exp(1.0),
+              1e-9);
+  EXPECT_NEAR(mpm::phase_field_straight_crack_profile(0.0, 2.0), std::exp(-1.0), 1e-15);
+  // [KT19] §5.1 and §5.3: G_c(θ) = Ḡ_c × energy(γ_n) over the crack normal's angle ψ.
+  auto range = [](const mpm::PhaseFieldAnisotropy& a, double bar) {
+    double low = 1e300, high = 0.0;
+    for (int k = 0; k < 3600; ++k) {
+      const double g = bar * mpm::phase_field_straight_crack_energy(
+                                 mpm::phase_field_normal_gamma(a, std::acos(-1.0) * k / 3600));
+      low = std::min(low, g);
+      high = std::max(high, g);
+    }
+    return std::make_pair(low, high);
+  };
+  const auto cubic = range({1.0, 1.0, 0.0, 74.0, 0.0}, 0.002121);  // N/mm
+  EXPECT_NEAR(cubic.first, 0.0030, 0.00005);
+  EXPECT_NEAR(cubic.second, 0.0049, 0.00005);
+  const auto orthotropic = range({1.0, 80.0, 0.0, 74.0, 0.0}, 0.002121);
+  EXPECT_NEAR(orthotropic.first, 0.0030, 0.00005);
+  EXPECT_NEAR(orthotropic.second, 0.0067, 0.00005);
+  const auto beam = range({80.0, 1.0, 0.0, 74.0, 0.0}, 7.5);  // §5.3 (iii): 10.6066 to 23.6892
+  EXPECT_NEAR(beam.first, 10.6066, 0.001);
+  EXPECT_NEAR(beam.second, 23.6892, 0.05);  // 23.651 here; the paper integrates eq. (8) numerically
+}
+
+TEST(PhaseFieldAnisotropy, RotatedTensorGivesTheDensityOfTheMaterialAxes) {
+  // χ_gᵀ Γ_g χ_g for the Hessian of d(n·x) equals γ_n(ψ) d''² with ψ the angle from ξ₁ to n.
+  const mpm::PhaseFieldAnisotropy a{2.0, 5.0, 0.7, 30.0, 0.4};
+  const Eigen::Matrix3d global = mpm::phase_field_anisotropy_global(a);
+  for (double normal : {0.0, 0.3, 1.2, 2.5}) {
+    const Vec<2> n(std::cos(normal), std::sin(normal));
+    const Mat<2> hessian = n * n.transpose();
+    const Eigen::Vector3d chi(hessian(0, 0), hessian(1, 1), hessian(0, 1));
+    EXPECT_NEAR(chi.dot(global * chi), mpm::phase_field_normal_gamma(a, normal - a.orientation),
+                1e-12);
+  }
+}
+
 TEST(PhaseFieldSplit, DegradationEndsAtTheResidualStiffness) {
   EXPECT_DOUBLE_EQ(mpm::phase_field_degradation(0.0, 1e-3), 1.0);
   EXPECT_DOUBLE_EQ(mpm::phase_field_degradation(1.0, 1e-3), 1e-3);
@@ -144,7 +188,9 @@ TEST(PhaseField, UniformHistoryGivesThePointwiseSolutionEverywhere) {
     const double H = 0.7 * Gc / (4 * l0);
     for (double& h : problem.particles.damage_history) h = H;
     mpm::Solver<2> solver(std::move(problem));
-    const mpm::PhaseField law{l0, Gc, 0.0};
+    mpm::PhaseField law;
+    law.length_scale = l0;
+    law.fracture_energy = Gc;
     const double expected = mpm::phase_field_uniform_damage(law, H);
     EXPECT_NEAR(expected, 0.7 / 1.7, 1e-15);
     double volume = 0.0;

@@ -299,3 +299,42 @@ TEST(ShapeFunctions, EveryKernelConservesMassAndMomentumInParticleToGrid) {
         << static_cast<int>(kind);
   }
 }
+
+TEST(ShapeFunctions, QuadraticBsplineHessiansAreTheGradientsDerivatives) {
+  // Central differences of the stencil's gradients, inside one knot span (the second derivatives
+  // are constant there), against bspline2_hessians; and Σ ∂²S̄ = 0, Σ X ⊗ ∂²S̄ = 0 (a linear field
+  // has no curvature).
+  const auto g = test_grid();
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 2.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    Vec<2> x(u(rng), u(rng));
+    // Keep x away from the knots (cell mid-points and nodes) by at least the difference step.
+    for (int k = 0; k < 2; ++k) {
+      const double t = (x[k] - g.origin[k]) * g.inverse_cell_size;
+      const double f = t * 2.0 - std::floor(t * 2.0);
+      if (f < 0.01 || f > 0.99) x[k] += 0.02 * g.cell_size;
+    }
+    Stencil<2> s;
+    bspline2_stencil<2>(x, g, s);
+    std::array<Mat<2>, Stencil<2>::capacity> hessian;
+    bspline2_hessians<2>(x, g, hessian);
+    Mat<2> sum = Mat<2>::Zero();
+    for (int e = 0; e < s.count; ++e) sum += hessian[e];
+    EXPECT_LT(sum.norm(), 1e-9);
+    const double step = 1e-4 * g.cell_size;
+    for (int k = 0; k < 2; ++k) {
+      Vec<2> dx = Vec<2>::Zero();
+      dx[k] = step;
+      Stencil<2> plus, minus;
+      bspline2_stencil<2>(x + dx, g, plus);
+      bspline2_stencil<2>(x - dx, g, minus);
+      for (int e = 0; e < s.count; ++e) {
+        ASSERT_EQ(plus.node[e], s.node[e]);
+        ASSERT_EQ(minus.node[e], s.node[e]);
+        const Vec<2> column = (plus.gradient[e] - minus.gradient[e]) / (2.0 * step);
+        EXPECT_NEAR((column - hessian[e].col(k)).norm(), 0.0, 1e-6 * 16.0 * 16.0);
+      }
+    }
+  }
+}

@@ -179,6 +179,56 @@ TEST(SceneFracture, PhaseFieldMaterialAndItsDefaults) {
   EXPECT_TRUE(listed);
 }
 
+TEST(SceneFracture, AnisotropicPhaseFieldNeedsTheBspline) {
+  const std::string text = replace(
+      with_material_keys(
+          "damage = \"phase-field\"\nlength_scale = \"1 mm\"\nfracture_energy = \"0.1 "
+          "N/mm\"\nanisotropy = { gamma_1111 = 1, gamma_2222 = 80, gamma_1212 = 74, orientation "
+          "= \"30 deg\" }"),
+      "max = [\"20 mm\", \"20 mm\"]",
+      "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"bspline2\"");
+  const mpm::Problem<2> p = fp::parse_scene(text, "aniso.toml");
+  const auto& law = std::get<mpm::PhaseField>(p.materials[0].damage);
+  ASSERT_TRUE(law.anisotropic);
+  EXPECT_EQ(law.anisotropy.gamma_1111, 1.0);
+  EXPECT_EQ(law.anisotropy.gamma_2222, 80.0);
+  EXPECT_EQ(law.anisotropy.gamma_1122, 0.0);  // the default
+  EXPECT_EQ(law.anisotropy.gamma_1212, 74.0);
+  EXPECT_NEAR(law.anisotropy.orientation, std::acos(-1.0) / 6.0, 1e-15);
+}
+
+TEST(SceneFracture, InitialCrackIsAHistoryAlongTheSegment) {
+  // h = 0.5 mm, 2 particles per cell: s = 0.25 mm, rows at y = 2.125, 2.375, … mm. A crack at
+  // y = 3 mm from x = 2 to 4 mm lies between the rows 2.875 and 3.125 (both s/2 away): 2 × 8
+  // particles get H = 10³ G_c / s ([[cracks]], scene_cracks.hpp), the others none.
+  const std::string text = replace(
+      with_material_keys(
+          "damage = \"phase-field\"\nlength_scale = \"1 mm\"\nfracture_energy = \"0.1 N/mm\""),
+      "[stop]", "[[cracks]]\nfrom = [\"2 mm\", \"3 mm\"]\nto = [\"4 mm\", \"3 mm\"]\n\n[stop]");
+  const mpm::Problem<2> p = fp::parse_scene(text, "crack.toml");
+  std::size_t marked = 0;
+  for (std::size_t k = 0; k < p.particles.size(); ++k) {
+    const double H = p.particles.damage_history[k];
+    const auto& x = p.particles.x[k];
+    const bool on_line = std::abs(x[1] - 3e-3) < 0.2e-3 && x[0] < 4e-3 + 0.125e-3;
+    if (on_line) {
+      EXPECT_NEAR(H, 1e3 * 100.0 / 0.25e-3, 1e-6 * H) << x.transpose();
+      ++marked;
+    } else {
+      EXPECT_EQ(H, 0.0) << x.transpose();
+    }
+  }
+  EXPECT_EQ(marked, 16u);
+  // The solver starts from the solved field: d = 0.999 on the line, the crack energy in the
+  // initial state.
+  mpm::Solver<2> solver(fp::parse_scene(text, "crack.toml"));
+  double largest = 0.0;
+  for (double d : solver.particles().damage) largest = std::max(largest, d);
+  EXPECT_GT(largest, 0.99);
+  EXPECT_GT(solver.accumulators().fracture_energy, 0.0);
+  EXPECT_EQ(solver.accumulators().initial_energy, solver.accumulators().fracture_energy);
+}
+
 TEST(SceneFracture, WeibullStrengthsAreSeededPerParticleDraws) {
   const std::string weibull =
       "damage = \"time-to-failure\"\ncrack_speed = \"2000 m/s\"\n"
@@ -597,6 +647,48 @@ std::vector<BadFractureScene> bad_scenes() {
        "expected length_scale only with damage = \"phase-field\", got it with \"rankine\""},
       {"length_scale_without_damage", with_material_keys("length_scale = \"1 mm\""), "length_scale",
        "materials[0].length_scale", "only with a damage law"},
+      {"anisotropy_without_bspline",
+       with_material_keys(phase_field + "\nanisotropy = { gamma_1111 = 1, gamma_2222 = 1, "
+                                        "gamma_1212 = 74 }"),
+       "anisotropy", "materials[0].anisotropy",
+       "expected the anisotropic phase field only with [grid] shape_function = \"bspline2\""},
+      {"anisotropy_indefinite",
+       replace(with_material_keys(phase_field + "\nanisotropy = { gamma_1111 = 1, gamma_2222 = 1, "
+                                                "gamma_1122 = 2, gamma_1212 = 74 }"),
+               "max = [\"20 mm\", \"20 mm\"]",
+               "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"bspline2\""),
+       "anisotropy", "materials[0].anisotropy.gamma_1122",
+       "|gamma_1122| <= sqrt(gamma_1111 gamma_2222)"},
+      {"anisotropy_negative",
+       replace(with_material_keys(phase_field + "\nanisotropy = { gamma_1111 = -1, gamma_2222 = 1, "
+                                                "gamma_1212 = 74 }"),
+               "max = [\"20 mm\", \"20 mm\"]",
+               "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"bspline2\""),
+       "anisotropy", "materials[0].anisotropy.gamma_1111", "a non-negative component"},
+      {"anisotropy_with_rankine",
+       replace(
+           kScene, "damage = \"rankine\"",
+           "damage = \"rankine\"\nanisotropy = { gamma_1111 = 1, gamma_2222 = 1, gamma_1212 = 1 }"),
+       "anisotropy", "materials[0].anisotropy",
+       "expected anisotropy only with damage = \"phase-field\""},
+      {"crack_without_phase_field",
+       replace(kScene, "[stop]",
+               "[[cracks]]\nfrom = [\"2 mm\", \"3 mm\"]\nto = [\"4 mm\", \"3 mm\"]\n\n[stop]"),
+       "[[cracks]]", "cracks[0]",
+       "expected [[cracks]] only in a scene with a damage = \"phase-field\""},
+      {"crack_of_zero_length",
+       replace(with_material_keys(phase_field), "[stop]",
+               "[[cracks]]\nfrom = [\"2 mm\", \"3 mm\"]\nto = [\"2 mm\", \"3 mm\"]\n\n[stop]"),
+       "to = ", "cracks[0].to", "an end point different from `from`"},
+      {"crack_missing_the_body",
+       replace(with_material_keys(phase_field), "[stop]",
+               "[[cracks]]\nfrom = [\"10 mm\", \"10 mm\"]\nto = [\"12 mm\", \"10 mm\"]\n\n[stop]"),
+       "[[cracks]]", "cracks[0]", "expected a crack that crosses phase-field particles"},
+      {"crack_unknown_body",
+       replace(with_material_keys(phase_field), "[stop]",
+               "[[cracks]]\nfrom = [\"2 mm\", \"3 mm\"]\nto = [\"4 mm\", \"3 mm\"]\nbody = "
+               "\"slab\"\n\n[stop]"),
+       "body = \"slab\"", "cracks[0].body", "the name of a body"},
       {"phase_field_with_thermal",
        with_material_keys(phase_field + "\nheat_capacity = \"700 J/(kg K)\"\nconductivity = \"1 "
                                         "W/(m K)\""),

@@ -90,6 +90,35 @@ int stencil_reach(const StepState<D>& state) {
   return static_cast<int>(std::ceil(extent)) + 1;
 }
 
+/// The fourth-order anisotropic term is on for this material (only compiled where it can be: the
+/// B-spline in 2D).
+template <int D, ShapeFunctionKind Kind>
+inline bool has_fourth_order(const PhaseFieldState<D>& pf, std::size_t material) {
+  if constexpr (D == 2 && Kind == ShapeFunctionKind::bspline2)
+    return pf.anisotropic[material] != 0;
+  else
+    return (void)pf, (void)material, false;
+}
+
+/// χ = (∂²S̄/∂X², ∂²S̄/∂Y², ∂²S̄/∂X∂Y) per stencil entry in the reference configuration,
+/// Fᵀ (∂²S̄/∂x∂x) F (the gradient of F within the particle neglected), for the B-spline stencil
+/// at x (same entry order).
+template <int D>
+inline void reference_second_derivatives(const Vec<D>& x, const Mat<D>& F, const GridIndex<D>& grid,
+                                         int count,
+                                         std::array<Eigen::Vector3d, Stencil<D>::capacity>& chi) {
+  if constexpr (D == 2) {
+    std::array<Mat<D>, Stencil<D>::capacity> hessian;
+    bspline2_hessians<D>(x, grid, hessian);
+    for (int e = 0; e < count; ++e) {
+      const Mat<D> H = F.transpose() * hessian[e] * F;
+      chi[e] = Eigen::Vector3d(H(0, 0), H(1, 1), H(0, 1));
+    }
+  } else {
+    (void)x, (void)F, (void)grid, (void)count, (void)chi;
+  }
+}
+
 }  // namespace
 
 template <int D, ShapeFunctionKind Kind>
@@ -191,6 +220,11 @@ void solve_phase_field(StepState<D>& state) {
       node[e] = grid.global(s.node[e]);
       gradient[e] = to_reference * s.gradient[e];
     }
+    // The fourth-order term ([KT19] eq. (57), scaled by G_c/(4 l₀)): V G_c l₀³ χ_Iᵀ Γ_g χ_J with χ
+    // the reference-configuration second derivatives (Fᵀ H F, F taken uniform over the stencil).
+    std::array<Eigen::Vector3d, Stencil<D>::capacity> chi;
+    const bool fourth_order = has_fourth_order<D, Kind>(pf, material);
+    if (fourth_order) reference_second_derivatives<D>(P.x[p], P.F[p], grid, s.count, chi);
     for (int e = 0; e < s.count; ++e) {
       if (row[e] < 0) continue;
       const std::size_t r = static_cast<std::size_t>(row[e]);
@@ -200,8 +234,9 @@ void solve_phase_field(StepState<D>& state) {
       double* band = pf.band.data() + r * static_cast<std::size_t>(width);
       for (int f = 0; f < s.count; ++f) {
         if (row[f] < 0) continue;
-        band[band_index<D>(node[f] - node[e], reach)] +=
-            local * s.weight[e] * s.weight[f] + diffusion * gradient[e].dot(gradient[f]);
+        double entry = local * s.weight[e] * s.weight[f] + diffusion * gradient[e].dot(gradient[f]);
+        if (fourth_order) entry += volume * chi[e].dot(pf.fourth_order[material] * chi[f]);
+        band[band_index<D>(node[f] - node[e], reach)] += entry;
       }
     }
   });
@@ -261,21 +296,26 @@ void solve_phase_field(StepState<D>& state) {
   pf.iterations = static_cast<int>(pf.solver.iterations());
   pf.residual = pf.solver.error();
 
-  // 6. d = 1 − c and ∇d at the particles (eq. (53)-(54)) and the crack energy Ψ_f = Σ V₀ G_c (d²/(4
-  // l₀) +
-  //    l₀ |∇d|²) of the discrete field (eq. (3)-(4)). The interpolant may stray outside [0, 1]
-  //    by the consistent mass's undershoot; the particles keep d clamped to it.
+  // 6. d = 1 − c and ∇d at the particles (eq. (53)-(54)) and the crack energy of the discrete
+  //    field, Ψ_f = Σ V₀ G_c (d²/(4 l₀) + l₀ |∇d|²) (eq. (3)-(4)), plus G_c l₀³ χᵀ Γ χ with the
+  //    anisotropy. The interpolant may stray outside [0, 1] by the consistent mass's undershoot;
+  //    the particles keep d clamped to it.
   double crack_energy = 0.0;
   const Eigen::VectorXd& c = pf.solution;
 #pragma omp parallel reduction(+ : crack_energy)
   {
     Stencil<D> s;
+    std::array<Eigen::Vector3d, Stencil<D>::capacity> chi;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n; ++p) {
       if (!is_phase_field(p)) continue;
       fill_stencil<D, Kind>(P, p, grid, s);
+      const std::size_t material = static_cast<std::size_t>(P.material[p]);
+      const bool fourth_order = has_fourth_order<D, Kind>(pf, material);
+      if (fourth_order) reference_second_derivatives<D>(P.x[p], P.F[p], grid, s.count, chi);
       double value = 0.0;
       Vec<D> gradient = Vec<D>::Zero();
+      Eigen::Vector3d curvature = Eigen::Vector3d::Zero();
       for (int e = 0; e < s.count; ++e) {
         if (empty_entry(s, e)) continue;
         const std::size_t i = static_cast<std::size_t>(s.node[e]);
@@ -283,12 +323,14 @@ void solve_phase_field(StepState<D>& state) {
             1.0 - c[pf.node_unknown[i * K + static_cast<std::size_t>(slot_of(pf, i, field_of(p)))]];
         value += s.weight[e] * nodal;
         gradient += nodal * s.gradient[e];
+        if (fourth_order) curvature += nodal * chi[e];
       }
       gradient = P.F[p].transpose() * gradient;
-      const std::size_t material = static_cast<std::size_t>(P.material[p]);
       const double l0 = pf.length_scale[material];
       crack_energy += P.volume0[p] * pf.fracture_energy[material] *
                       (value * value / (4.0 * l0) + l0 * gradient.squaredNorm());
+      if (fourth_order)  // G_c l₀³ χᵀ Γ χ ([KT19] eq. (4))
+        crack_energy += P.volume0[p] * curvature.dot(pf.fourth_order[material] * curvature);
       P.damage[p] = std::clamp(value, 0.0, 1.0);
     }
   }

@@ -36,6 +36,10 @@ struct PhaseFieldState {
   std::vector<double> residual_stiffness;    ///< k_f
   std::vector<double> fracture_energy;       ///< G_c [J/m²]
   std::vector<double> length_scale;          ///< l₀ [m]
+  /// The fourth-order anisotropic term ([KT19] §2.2; D = 2 with the B-spline only): per material
+  /// whether it is on and G_c l₀³ Γ_g (phase_field_anisotropy_global) [J/m⁰·m²·m = J·m].
+  std::vector<char> anisotropic;
+  std::vector<Eigen::Matrix3d> fourth_order;
 
   /// Per node and slot of the active grid: the body the slot holds (−1 = free) and its unknown.
   std::vector<std::int32_t> node_body, node_unknown;

@@ -223,7 +223,8 @@ void write_tables(AnalyzeResult& result) {
 
 }  // namespace
 
-AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
+AnalyzeResult analyze_run(const AnalyzeOptions& given, std::FILE* log) {
+  AnalyzeOptions o = given;
   try {
     analysis::validate(o.fragments);
   } catch (const std::invalid_argument& e) {
@@ -233,6 +234,12 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o, std::FILE* log) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw AnalyzeError(path + ": no such file");
   if (fs::is_directory(path, ec)) throw AnalyzeError(path + ": is a directory, not a run file");
+  if (!o.d_mask_given) {
+    const std::vector<mpm::ModuleDecision> modules = open_run(path).meta().modules;
+    for (const mpm::ModuleDecision& m : modules)
+      if (m.module == "phase field" && m.active)
+        o.fragments.d_mask = std::min(o.fragments.d_mask, phase_field_fragment_mask);
+  }
 
   AnalyzeResult result;
   result.output_dir = o.output_dir;

@@ -57,16 +57,21 @@ void add_analyze_command(CLI::App& app, CommandResult& result) {
   c->add_option(
       "-o,--output", o.output_dir,
       "Directory for CSV tables and figures (default: RUN_fragments/ beside the run file)");
-  c->add_option("--d-mask", o.fragments.d_mask,
-                "Particles with damage d >= this belong to no fragment")
-      ->capture_default_str();
+  CLI::Option* mask =
+      c->add_option("--d-mask", o.fragments.d_mask,
+                    "Particles with damage d >= this belong to no fragment (a run with the phase "
+                    "field: 0.9 unless given)")
+          ->capture_default_str();
   c->add_option("--min-particles", o.fragments.min_particles,
                 "Fragments with fewer particles are reported as fines (4 = one cell at 2 x 2 "
                 "particles per cell)")
       ->capture_default_str();
   c->add_flag("--csv-only", a->csv_only, "Do not write /fragments/ groups into the run file");
   c->add_flag("--no-figures", a->no_figures, "Do not write the PNG figures");
-  c->callback([a, &result] { result.exit_code = execute(*a); });
+  c->callback([a, mask, &result] {
+    a->options.d_mask_given = mask->count() > 0;
+    result.exit_code = execute(*a);
+  });
 }
 
 }  // namespace fragmpm::pipeline

@@ -29,6 +29,10 @@ const std::vector<VerifyCase>& verify_cases() {
        "AT2 phase field: imposed crack profile vs exp(-|x|/(2 l0)) and its energy, and the crack "
        "energy of a bar pulled apart vs G_c x height, three resolutions",
        verify_phase_field_bar},
+      {"plate-impact",
+       "KT19 5.1 plate under impact, phase field at h = 0.25 mm: crack start, speed vs Rayleigh, "
+       "branching; isotropic and cubic",
+       verify_plate_impact},
       {"kalthoff", "P1 Kalthoff-Winkler plate: crack angle and crack speed", verify_kalthoff},
       {"brazilian",
        "P5 dynamic Brazilian disk: fragment count, mean size and speed at two resolutions, three "

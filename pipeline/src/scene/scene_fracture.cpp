@@ -97,10 +97,17 @@ void check_softening(const Section& m, const mpm::MaterialSpec& spec,
 }  // namespace
 
 const std::vector<std::string_view>& damage_keys() {
-  static const std::vector<std::string_view> keys = {
-      "damage",       "strength",          "fracture_energy",       "crack_speed",
-      "degradation",  "weibull",           "characteristic_length", "averaging",
-      "length_scale", "residual_stiffness"};
+  static const std::vector<std::string_view> keys = {"damage",
+                                                     "strength",
+                                                     "fracture_energy",
+                                                     "crack_speed",
+                                                     "degradation",
+                                                     "weibull",
+                                                     "characteristic_length",
+                                                     "averaging",
+                                                     "length_scale",
+                                                     "residual_stiffness",
+                                                     "anisotropy"};
   return keys;
 }
 
@@ -142,6 +149,33 @@ mpm::PhaseField read_phase_field(const Section& m, const mpm::GridSpec<2>& grid)
   if (!(pf.residual_stiffness >= 0.0 && pf.residual_stiffness < 1.0))
     m.expected("residual_stiffness",
                "a residual stiffness 0 <= k_f < 1 (g = (1 - k_f)(1 - d)^2 + k_f, [KT19] eq. (15))");
+  if (m.has("anisotropy")) {
+    // [KT19] §2.2, eq. (4)-(6): the fourth-order density G_c l0³ χᵀ Γ χ in the material axes.
+    if (grid.shape_function != mpm::ShapeFunctionKind::bspline2)
+      m.fail("anisotropy",
+             "expected the anisotropic phase field only with [grid] shape_function = "
+             "\"bspline2\" (its fourth-order term needs the second derivatives of a C1 basis)");
+    const Section a = m.table("anisotropy");
+    a.allow_only({"gamma_1111", "gamma_2222", "gamma_1122", "gamma_1212", "orientation"});
+    mpm::PhaseFieldAnisotropy& g = pf.anisotropy;
+    g.gamma_1111 = a.number("gamma_1111");
+    g.gamma_2222 = a.number("gamma_2222");
+    g.gamma_1212 = a.number("gamma_1212");
+    g.gamma_1122 = a.optional_number("gamma_1122").value_or(0.0);
+    g.orientation = a.optional_quantity("orientation", QK::angle).value_or(0.0);
+    for (std::string_view k : {"gamma_1111", "gamma_2222", "gamma_1212"})
+      if (!(a.number(k) >= 0.0)) a.expected(k, "a non-negative component of the tensor γ");
+    // The density must not be negative for any curvature: Γ positive semi-definite.
+    if (!(g.gamma_1122 * g.gamma_1122 <= g.gamma_1111 * g.gamma_2222))
+      a.expected("gamma_1122",
+                 "|gamma_1122| <= sqrt(gamma_1111 gamma_2222) (the fourth-order density must not "
+                 "be negative)");
+    if (!(g.gamma_1111 + g.gamma_2222 + g.gamma_1212 > 0.0))
+      a.fail_table(
+          "expected some positive component of γ (all zero is the second-order model: "
+          "leave anisotropy out)");
+    pf.anisotropic = true;
+  }
   return pf;
 }
 
@@ -165,7 +199,7 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
   }
   if (law != "rankine" && law != "time-to-failure")
     m.expected("damage", "one of \"none\", \"rankine\", \"time-to-failure\", \"phase-field\"");
-  for (std::string_view k : {"length_scale", "residual_stiffness"})
+  for (std::string_view k : {"length_scale", "residual_stiffness", "anisotropy"})
     if (m.has(k))
       m.fail(k, "expected " + std::string(k) +
                     " only with damage = \"phase-field\", got it with \"" + law + "\"");

@@ -14,6 +14,7 @@
 #include "fragmpm/mpm/run_file.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/scene_shapes.hpp"
+#include "scene_cracks.hpp"
 #include "scene_fracture.hpp"
 #include "scene_grains.hpp"
 #include "scene_thermal.hpp"
@@ -431,7 +432,7 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   }
   const Section top(root, "", path);
   top.allow_only({"grid", "time", "physics", "materials", "bodies", "walls", "contact", "loads",
-                  "stop", "output"});
+                  "cracks", "stop", "output"});
 
   mpm::Problem<2> problem;
   problem.scene_path = path;
@@ -575,6 +576,7 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
           read_heat_load(load_sections[i], i, problem, load_bodies));
     else
       problem.loads.push_back(read_load(load_sections[i], i, problem, load_bodies));
+  apply_initial_cracks(problem, top.array_of_tables("cracks", false), load_bodies);
   {
     std::vector<std::optional<double>> body_temperature(problem.body_names.size());
     for (std::size_t i = 0; i < bodies.size(); ++i)

@@ -199,6 +199,40 @@ inline void bspline2_stencil(const Vec<D>& x, const GridIndex<D>& grid, Stencil<
   }
 }
 
+/// Second derivatives ∂²S̄/∂x∂x of the quadratic B-spline stencil, in the entry order of
+/// bspline2_stencil: per direction the curvature (1, −2, 1)/h² of the three pieces (constant
+/// within a half-cell knot span, the basis being C¹), times the other directions' weights or
+/// slopes. The fourth-order anisotropic phase field ([KT19] eq. (51), (57)) needs them.
+template <int D>
+inline void bspline2_hessians(const Vec<D>& x, const GridIndex<D>& grid,
+                              std::array<Mat<D>, Stencil<D>::capacity>& hessian) {
+  std::array<detail::QuadraticBspline1d, D> axis;
+  for (int k = 0; k < D; ++k)
+    axis[k] = detail::quadratic_bspline_1d((x[k] - grid.origin[k]) * grid.inverse_cell_size);
+  int total = 1;
+  for (int k = 0; k < D; ++k) total *= 3;
+  const double h2 = grid.inverse_cell_size * grid.inverse_cell_size;
+  for (int e = 0; e < total; ++e) {
+    std::array<int, D> local{};
+    for (int k = 0, rest = e; k < D; ++k, rest /= 3) local[k] = rest % 3;
+    for (int a = 0; a < D; ++a)
+      for (int b = a; b < D; ++b) {
+        double value = h2;
+        for (int k = 0; k < D; ++k) {
+          const auto& axis_k = axis[k];
+          const int n = local[k];
+          if (a == b && k == a)
+            value *= axis_k.curvature[n];
+          else if (k == a || k == b)
+            value *= axis_k.slope[n];
+          else
+            value *= axis_k.weight[n];
+        }
+        hessian[e](a, b) = hessian[e](b, a) = value;
+      }
+  }
+}
+
 /// CPDI ([XLS21] eq. (52)-(53); [HH17] §1.1). The domain is the parallelepiped spanned by the full
 /// edge vectors r_k (columns of `domain`), corners x ± r1/2 ± r2/2. Interpolating the hat N_i
 /// bilinearly between the corner values gives S̄_ip = mean_c N_i(x_c) and, by the divergence theorem

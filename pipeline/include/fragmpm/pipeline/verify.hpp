@@ -77,6 +77,9 @@ std::vector<VerifyRow> verify_bar_tension(const VerifyOptions& options);
 /// resolutions, and the crack energy of a bar pulled apart against G_c × height
 /// (verify_phase_field.hpp, docs/verification.md).
 std::vector<VerifyRow> verify_phase_field_bar(const VerifyOptions& options);
+/// [KT19] §5.1 plate under impact loading, quick variant (h = 0.25 mm): crack start, speed against
+/// the Rayleigh speed, branching, crack energy; isotropic and cubic (`quick`: isotropic only).
+std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options);
 /// P1: Kalthoff–Winkler crack angle and speed ([XLS21] §4.3; [HH17] §3.2).
 std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options);
 /// P5: Brazilian disk fragment statistics at two resolutions, three Weibull seeds, partitioned and

@@ -2,9 +2,11 @@
 // `fragmpm verify phase-field-bar` (docs/verification.md): closed-form checks of the AT2 phase
 // field
 // ([KT19]) — the profile of an imposed crack, and the crack energy of a bar pulled apart.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "fragmpm/mpm/phase_field.hpp"
 #include "fragmpm/pipeline/verify.hpp"
 
 namespace fragmpm::pipeline {
@@ -22,8 +24,15 @@ struct CrackProfile {
   double wall_seconds = 0.0;
 };
 
-/// `shape`: a [grid] shape_function name.
-CrackProfile phase_field_crack_profile(double cell_size, const std::string& shape);
+/// `shape`: a [grid] shape_function name. With `anisotropy` (the B-spline only) the material has
+/// the fourth-order term of [KT19] §2.2 and the strip is [−20 l₀, 20 l₀] and 10 and 20 l₀ high:
+/// the crack's normal is x, at ψ = −φ from the material axis ξ₁, and the oracle is the closed form
+/// of mpm::phase_field_straight_crack_profile / _energy for γ_n = phase_field_normal_gamma(−φ):
+/// the profile within 2 l₀ of the taller strip's middle, the energy per crack length from the
+/// difference of the two heights, over Ḡ_c × that energy.
+CrackProfile phase_field_crack_profile(
+    double cell_size, const std::string& shape,
+    const std::optional<mpm::PhaseFieldAnisotropy>& anisotropy = std::nullopt);
 
 /// One level of the pulled bar (scenes/verify/phase-field-bar.toml): `variant` "seeded" (a partial
 /// crack, d ≈ ½, imposed at mid-length by a history G_c / s on one particle column; grips at
