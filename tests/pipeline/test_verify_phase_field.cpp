@@ -105,5 +105,5 @@ TEST(VerifyPhaseField, PulledBarBreaksIntoTwoFragments) {
   // Both halves hold about half the particles.
   const auto members = fragmpm::analysis::fragment_members(labels);
   for (std::size_t f = 0; f < 2; ++f)
-    EXPECT_NEAR(double(members[f].size()) / double(P.size()), 0.5, 0.05);
+    EXPECT_NEAR(double(members[f].size()) / double(reference.size()), 0.5, 0.05);
 }
