@@ -11,6 +11,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "fragmpm/mpm/phase_field.hpp"
+
 namespace fragmpm::mpm {
 namespace {
 
@@ -120,9 +122,10 @@ Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation deg
   if (damage <= 0.0) return trial_stress;
   if (degradation == Degradation::isotropic)
     return (1.0 - damage) * trial_stress;  // [XLS21] eq. (7)
-  if (degradation == Degradation::volumetric_deviatoric)
+  if (degradation == Degradation::volumetric_deviatoric ||
+      degradation == Degradation::hencky_spectral)
     throw std::logic_error(
-        "degrade_stress: the volumetric-deviatoric split needs F (use degrade_with_energy)");
+        "degrade_stress: this split is of the energy and needs F (use degrade_with_energy)");
   // 001 eq. (26-27): scale the tensile principal stresses, keep the compressive ones, rebuild with
   // the same eigenvectors.
   Eigensolver<D> es;
@@ -149,9 +152,33 @@ Mat<D> degrade_stress(const Mat<D>& trial_stress, double damage, Degradation deg
 // for a Hencky material, to O(ε) for the neo-Hookean). Isotropic degradation is the special case σ̄⁺
 // = σ̄, where (1 − d) ψ is an exact potential and ψ_t = ψ for any path. For non-proportional
 // mixed-sign paths ψ_t is the secant estimate of the release.
+namespace {
+
+template <int D>
+TensileSplit<D> hencky_split(const NeoHookean& model, const Mat<D>& F) {
+  const double lambda = model.bulk_modulus - 2.0 * model.shear_modulus / 3.0;
+  return hencky_tensile_split<D>(lambda, model.shear_modulus, F);
+}
+
+}  // namespace
+
+template <int D>
+void elastic_stress_and_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation,
+                               Mat<D>& stress, double& psi) {
+  if (degradation != Degradation::hencky_spectral) {
+    model.stress_and_energy<D>(F, stress, psi);
+    return;
+  }
+  const TensileSplit<D> split = hencky_split<D>(model, F);
+  stress = split.tensile_stress + split.compressive_stress;
+  psi = split.tensile_energy + split.compressive_energy;
+}
+
 template <int D>
 double degradable_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation) {
   if (degradation == Degradation::isotropic) return model.energy_density<D>(F);
+  // ψ_d = ψ⁻ + (1 − d) ψ⁺ gives −∂ψ_d/∂d = ψ⁺ exactly, on any path (no secant estimate).
+  if (degradation == Degradation::hencky_spectral) return hencky_split<D>(model, F).tensile_energy;
   if (degradation == Degradation::volumetric_deviatoric) {
     const double log_J = std::log(F.determinant());
     const double volumetric = 0.5 * model.bulk_modulus * log_J * log_J;
@@ -195,6 +222,18 @@ DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F,
                           volumetric_factor * thermal;
     const double volumetric_energy = 0.5 * model.bulk_modulus * log_J * log_J;
     return {stress, log_J > 0.0 ? psi : psi - volumetric_energy};
+  }
+  if (degradation == Degradation::hencky_spectral) {
+    // σ = σ⁻ + (1 − d) σ⁺, the derivative of ψ⁻ + (1 − d) ψ⁺ ([KT19] eq. (14)-(16) with the
+    // linear degradation of [HH17] eq. (26) in place of g(d)). The rest of the trial stress is the
+    // isotropic thermal pressure; it acts on the volume and, as U(J) in ψ⁺ or ψ⁻, degrades only
+    // in expansion (tr ε = ln J > 0), which coupling_fraction assumes.
+    const TensileSplit<D> split = hencky_split<D>(model, F);
+    const Mat<D> thermal = trial_stress - split.tensile_stress - split.compressive_stress;
+    const double volumetric_factor = F.determinant() > 1.0 ? 1.0 - damage : 1.0;
+    return {split.compressive_stress + (1.0 - damage) * split.tensile_stress +
+                volumetric_factor * thermal,
+            split.tensile_energy};
   }
   const Mat<D> b = F * F.transpose();
   const Mat<D> tau = model.kirchhoff<D>(F);
@@ -241,6 +280,10 @@ template void update_damage<3>(const DamageLaw&, const Mat<3>&, double, double, 
                                double&);
 template Mat<2> degrade_stress<2>(const Mat<2>&, double, Degradation);
 template Mat<3> degrade_stress<3>(const Mat<3>&, double, Degradation);
+template void elastic_stress_and_energy<2>(const NeoHookean&, const Mat<2>&, Degradation, Mat<2>&,
+                                           double&);
+template void elastic_stress_and_energy<3>(const NeoHookean&, const Mat<3>&, Degradation, Mat<3>&,
+                                           double&);
 template double degradable_energy<2>(const NeoHookean&, const Mat<2>&, Degradation);
 template double degradable_energy<3>(const NeoHookean&, const Mat<3>&, Degradation);
 template DegradedState<2> degrade_with_energy<2>(const NeoHookean&, const Mat<2>&, const Mat<2>&,

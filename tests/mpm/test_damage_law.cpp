@@ -412,10 +412,11 @@ double cycle_work(const mpm::NeoHookean& m, double damage, mpm::Degradation degr
     return F;
   };
   auto nominal = [&](const mpm::Mat<2>& F) {
-    const mpm::Mat<2> trial = m.cauchy<2>(F);
+    mpm::Mat<2> trial;
+    double psi;
+    mpm::elastic_stress_and_energy<2>(m, F, degradation, trial, psi);
     const mpm::Mat<2> stress =
-        mpm::degrade_with_energy<2>(m, F, trial, damage, degradation, m.energy_density<2>(F))
-            .stress;
+        mpm::degrade_with_energy<2>(m, F, trial, damage, degradation, psi).stress;
     return mpm::Mat<2>(F.determinant() * stress * F.inverse().transpose());
   };
   const int n = 40000;
@@ -490,4 +491,76 @@ TEST(DamageLaw, FailedParticleUnderTheVolumetricDeviatoricSplitCarriesOnlyPressu
   F << 1.5, 0.4, 0.0, 0.9;
   EXPECT_LT(failed(F).stress.norm(), 1e-9 * m.bulk_modulus);
   EXPECT_NEAR(failed(F).degradable, m.energy_density<2>(F), 1e-9 * m.bulk_modulus);
+}
+
+TEST(DamageLaw, HenckySpectralSplitDerivesFromAPotentialAndReleasesExactlyPsiPlus) {
+  // ψ_d = ψ⁻ + (1 − d) ψ⁺ on the Hencky energy ([KT19] eq. (14)): a closed cycle at fixed d does
+  // no net work, and along an open path at fixed d the work is ψ − d ψ⁺ with ψ⁺ the degradable
+  // energy, so Δd ψ⁺ is the exact release.
+  const mpm::NeoHookean m = glass();
+  const double scale = m.shear_modulus;
+  for (const double d : {0.0, 0.5, 1.0})
+    EXPECT_NEAR(cycle_work(m, d, mpm::Degradation::hencky_spectral), 0.0, 1e-6 * scale)
+        << "d = " << d;
+
+  const double d = 0.7;
+  const auto degradation = mpm::Degradation::hencky_spectral;
+  auto nominal = [&](const mpm::Mat<2>& G) {
+    mpm::Mat<2> trial;
+    double psi;
+    mpm::elastic_stress_and_energy<2>(m, G, degradation, trial, psi);
+    const mpm::Mat<2> stress = mpm::degrade_with_energy<2>(m, G, trial, d, degradation, psi).stress;
+    return mpm::Mat<2>(G.determinant() * stress * G.inverse().transpose());
+  };
+  mpm::Mat<2> F = mpm::Mat<2>::Identity(), F_old = F;
+  double work = 0.0;
+  mpm::Mat<2> P_old = nominal(F);
+  for (int k = 1; k <= 20000; ++k) {
+    const double t = double(k) / 20000;
+    F << 1.0 + 0.2 * t, 0.3 * t, 0.0, 1.0 - 0.35 * t;
+    const mpm::Mat<2> P = nominal(F);
+    work += 0.5 * (P + P_old).cwiseProduct(F - F_old).sum();
+    F_old = F;
+    P_old = P;
+  }
+  mpm::Mat<2> trial;
+  double psi;
+  mpm::elastic_stress_and_energy<2>(m, F, degradation, trial, psi);
+  const double stored = psi - d * mpm::degradable_energy<2>(m, F, degradation);
+  EXPECT_NEAR(work, stored, 1e-6 * std::abs(stored));
+}
+
+TEST(DamageLaw, FailedParticleUnderTheHenckySplitResistsCompressionAndShearButNotTension) {
+  const mpm::NeoHookean m = glass();
+  const auto degradation = mpm::Degradation::hencky_spectral;
+  const double lambda = m.bulk_modulus - 2.0 * m.shear_modulus / 3.0, mu = m.shear_modulus;
+  const auto failed = [&](const mpm::Mat<2>& F) {
+    mpm::Mat<2> trial;
+    double psi;
+    mpm::elastic_stress_and_energy<2>(m, F, degradation, trial, psi);
+    return mpm::degrade_with_energy<2>(m, F, trial, 1.0, degradation, psi).stress;
+  };
+  // Squeezed along y, free along x (F = diag(1, 0.9)): ε = (0, ln 0.9), all compressive, so the
+  // failed particle keeps the whole Hencky stress: σ_yy = (λ + 2μ) ln 0.9 / 0.9, σ_xx = λ ln 0.9 /
+  // 0.9.
+  mpm::Mat<2> F = mpm::Mat<2>::Identity();
+  F(1, 1) = 0.9;
+  const double e = std::log(0.9);
+  EXPECT_NEAR(failed(F)(1, 1), (lambda + 2.0 * mu) * e / 0.9, 1e-9 * m.bulk_modulus);
+  EXPECT_NEAR(failed(F)(0, 0), lambda * e / 0.9, 1e-9 * m.bulk_modulus);
+  // Isochoric pure shear F = diag(1.1, 1/1.1): tr ε = 0, so only μ ε₂² survives in ψ⁻ and the
+  // failed particle still resists the shear with σ_yy = 2μ ln(1/1.1) (J = 1), the compressed
+  // direction.
+  F << 1.1, 0.0, 0.0, 1.0 / 1.1;
+  EXPECT_NEAR(failed(F)(1, 1), -2.0 * mu * std::log(1.1), 1e-9 * m.bulk_modulus);
+  EXPECT_NEAR(failed(F)(0, 0), 0.0, 1e-9 * m.bulk_modulus);
+  // Stretched in both directions: nothing is left.
+  F << 1.1, 0.0, 0.0, 1.05;
+  EXPECT_LT(failed(F).norm(), 1e-9 * m.bulk_modulus);
+  // At small strain the Hencky trial stress is the neo-Hookean one to O(ε²).
+  F << 1.0 + 1e-4, 2e-4, -1e-4, 1.0 - 3e-4;
+  mpm::Mat<2> hencky;
+  double psi;
+  mpm::elastic_stress_and_energy<2>(m, F, degradation, hencky, psi);
+  EXPECT_LT((hencky - m.cauchy<2>(F)).norm(), 1e-3 * m.cauchy<2>(F).norm());
 }

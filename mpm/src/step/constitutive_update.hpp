@@ -20,14 +20,16 @@ struct ConstitutiveResult {
   double dissipated = 0.0;  ///< released by this update's damage increment [J/m³]
 };
 
-/// The trial (undamaged) stress σ̄ of particle p from F and, with the thermal module, θ.
+/// The trial (undamaged) stress σ̄ of particle p from F and, with the thermal module, θ. The
+/// elastic law is the neo-Hookean, or the Hencky energy of a material degraded by its split.
 template <int D, bool Thermal>
 inline Mat<D> trial_stress(const StepState<D>& state, std::int64_t p, double& psi) {
   const auto& P = state.problem.particles;
   const int material = P.material[p];
   Mat<D> trial;
-  state.models[static_cast<std::size_t>(material)].template stress_and_energy<D>(P.F[p], trial,
-                                                                                 psi);
+  elastic_stress_and_energy<D>(
+      state.models[static_cast<std::size_t>(material)], P.F[p],
+      state.problem.materials[static_cast<std::size_t>(material)].degradation, trial, psi);
   if constexpr (Thermal) trial += state.thermal->stress(material, P.F[p], P.temperature[p]);
   return trial;
 }
@@ -89,7 +91,8 @@ inline ConstitutiveResult update_constitutive(
   const DegradedState<D> degraded =
       degrade_with_energy<D>(model, P.F[p], trial, d, spec.degradation, psi);
   // ½ Σ τᵢ ln λᵢ is the exact released energy only at small strain; at large stretch it can exceed
-  // ψ itself, so it is bounded by ψ: damage never stores negative energy.
+  // ψ itself, so it is bounded by ψ: damage never stores negative energy. (The potentials of the
+  // volumetric-deviatoric and Hencky splits release at most ψ; the bound never acts on them.)
   const double degradable = std::clamp(degraded.degradable, 0.0, psi);
   P.stress[p] = degraded.stress;
   if constexpr (Thermal) state.degradable[static_cast<std::size_t>(p)] = degradable;

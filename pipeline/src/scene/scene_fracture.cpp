@@ -237,10 +237,12 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     spec.degradation = mpm::Degradation::isotropic;
   else if (degradation == "volumetric-deviatoric")
     spec.degradation = mpm::Degradation::volumetric_deviatoric;
+  else if (degradation == "hencky-spectral")
+    spec.degradation = mpm::Degradation::hencky_spectral;
   else
     m.expected("degradation",
                "one of \"tensile\" (spectral, [HH17] eq. (26)-(27)), \"isotropic\" ([XLS21] eq. "
-               "(7)), \"volumetric-deviatoric\" ([AMM09])");
+               "(7)), \"volumetric-deviatoric\" ([AMM09]), \"hencky-spectral\" ([KT19] eq. (14))");
 
   if (law == "rankine") {
     if (m.has("crack_speed"))

@@ -44,6 +44,12 @@ enum class Degradation {
   /// split of the Cauchy stress, the degraded stress derives from a potential, so a damaged
   /// particle stores exactly the work done on it, and a failed one carries a pressure only.
   volumetric_deviatoric,
+  /// ψ = ψ⁻ + (1 − d) ψ⁺ with Miehe's spectral split of the Hencky energy in the principal
+  /// logarithmic strains ([KT19] eq. (14), phase_field.hpp): the material is Hencky-elastic (the
+  /// neo-Hookean to O(ε²)), the stress derives from a potential, the energy released by Δd is
+  /// exactly Δd ψ⁺, and a failed particle keeps its stiffness along compressed principal
+  /// directions (shear included), so crushed material neither creates energy nor flows.
+  hencky_spectral,
 };
 
 /// Weibull strength per particle ([HH17] eq. (25)): σ_f / σ̄_f = (V̄/V · ln ℛ / ln ½)^{1/m}.
@@ -100,6 +106,13 @@ void update_damage_from_equivalent(const DamageLaw& law, double equivalent_stres
 /// damage_law.cpp for why the out-of-plane stress of plane strain never decides a tensile failure).
 template <int D>
 double largest_principal_stress(const Mat<D>& stress);
+
+/// The undamaged elastic response that `degradation` acts on: the neo-Hookean model's Cauchy
+/// stress [Pa] and energy ψ(F) [J/m³], or for Degradation::hencky_spectral the Hencky energy
+/// ψ⁺ + ψ⁻ with the same bulk and shear moduli and its Cauchy stress σ⁺ + σ⁻.
+template <int D>
+void elastic_stress_and_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation,
+                               Mat<D>& stress, double& psi);
 
 /// Degraded Cauchy stress [Pa] from the trial stress σ̄ and damage d: tensile principal stresses
 /// scaled by (1 − d), compressive ones kept, same eigenvectors ([HH17] eq. (26)-(27)); or σ = (1 −
