@@ -35,9 +35,16 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
     case ShapeFunctionKind::linear:
       break;
   }
+  // The elastic law follows the degradation: the Hencky split needs the Hencky energy.
+  bool hencky = false, neo_hookean = false;
+  for (const MaterialSpec& m : problem.materials)
+    (m.degradation == Degradation::hencky_spectral ? hencky : neo_hookean) = true;
+  const char* elasticity = hencky && neo_hookean ? "neo-Hookean and Hencky (hencky-spectral) bodies"
+                           : hencky              ? "Hencky bodies (hencky-spectral degradation)"
+                                                 : "neo-Hookean bodies";
   plan.push_back({"mechanics", true,
                   std::string("explicit update-stress-last MPM with ") + shape +
-                      " shape functions, neo-Hookean bodies"});
+                      " shape functions, " + elasticity});
   plan.push_back({"walls", !problem.walls.empty(),
                   problem.walls.empty() ? "no walls in the scene"
                                         : std::to_string(problem.walls.size()) + " rigid wall(s)"});

@@ -136,6 +136,19 @@ TEST(SceneFracture, NonlocalRankineBandIsWiderThanLocal) {
               1e-15);
 }
 
+TEST(SceneFracture, EnergySplitsByName) {
+  for (const auto& [name, expected] :
+       {std::pair{"volumetric-deviatoric", mpm::Degradation::volumetric_deviatoric},
+        std::pair{"hencky-spectral", mpm::Degradation::hencky_spectral}}) {
+    const mpm::Problem<2> p = fp::parse_scene(
+        with_material_keys(std::string("damage = \"time-to-failure\"\nstrength = \"30 "
+                                       "MPa\"\ncrack_speed = \"1.5 km/s\"\ndegradation = \"") +
+                           name + "\""),
+        "split.toml");
+    EXPECT_EQ(p.materials[0].degradation, expected) << name;
+  }
+}
+
 TEST(SceneFracture, TimeToFailureIsotropicAndNoDamage) {
   const std::string text = with_material_keys(
       "damage = \"time-to-failure\"\nstrength = \"30 MPa\"\ncrack_speed = \"1.5 "
