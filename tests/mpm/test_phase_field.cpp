@@ -265,3 +265,22 @@ TEST(PhaseField, CrackEnergyClosesTheEnergyBalance) {
   EXPECT_LT(worst, 0.02 * input);
   EXPECT_EQ(row.totals.dissipated, 0.0);  // the phase field books nothing as damage dissipation
 }
+
+TEST(PhaseField, WorkCountsOneStageRunPerStep) {
+  // The bar starts without history: no solve at construction, then one stage run per step, each
+  // with conjugate-gradient iterations once the history is non-zero. A scene without the phase
+  // field reports nothing.
+  mpm::Solver<2> solver(pulled_bar());
+  EXPECT_EQ(solver.phase_field_work().runs, 0);
+  for (int s = 0; s < 40; ++s) ASSERT_FALSE(solver.step());
+  const mpm::PhaseFieldWork& work = solver.phase_field_work();
+  EXPECT_EQ(work.runs, 40);
+  EXPECT_GT(work.iterations, 0);
+  EXPECT_GT(work.seconds, 0.0);
+  auto problem = pulled_bar();
+  for (auto& material : problem.materials) material.damage = mpm::NoDamage{};
+  mpm::Solver<2> elastic(std::move(problem));
+  for (int s = 0; s < 5; ++s) ASSERT_FALSE(elastic.step());
+  EXPECT_EQ(elastic.phase_field_work().runs, 0);
+  EXPECT_EQ(elastic.phase_field_work().seconds, 0.0);
+}
