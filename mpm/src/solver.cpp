@@ -3,6 +3,7 @@
 #include "fragmpm/mpm/solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -37,6 +38,7 @@ void settle_affine(Problem<D>& problem) {
 template <int D>
 struct Solver<D>::Impl {
   StepState<D> state;
+  PhaseFieldWork phase_field_work;
 
   explicit Impl(Problem<D> p) {
     StepState<D>& s = state;
@@ -126,6 +128,14 @@ struct Solver<D>::Impl {
 
   /// The phase-field solve for the scene's shape function.
   void phase_field_for_kind() {
+    const auto start = std::chrono::steady_clock::now();
+    solve_phase_field_for_kind();
+    phase_field_work.seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++phase_field_work.runs;
+    phase_field_work.iterations += state.phase_field->iterations;
+  }
+  void solve_phase_field_for_kind() {
     switch (state.problem.grid.shape_function) {
       case ShapeFunctionKind::linear:
         solve_phase_field<D, ShapeFunctionKind::linear>(state);
@@ -332,6 +342,10 @@ Vec<D> Solver<D>::wall_displacement(std::size_t wall) const {
 template <int D>
 double Solver<D>::stable_dt() const {
   return impl_->state.next_dt_limit;
+}
+template <int D>
+const PhaseFieldWork& Solver<D>::phase_field_work() const {
+  return impl_->phase_field_work;
 }
 
 template <int D>

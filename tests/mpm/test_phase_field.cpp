@@ -6,7 +6,6 @@
 #include <omp.h>
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -15,6 +14,7 @@
 #include "fragmpm/mpm/phase_field.hpp"
 #include "fragmpm/mpm/solver.hpp"
 #include "fragmpm/pipeline/scene.hpp"
+#include "fragmpm/pipeline/verify_phase_field.hpp"
 
 using namespace fragmpm;
 using mpm::Mat;
@@ -139,43 +139,7 @@ TEST(PhaseFieldSplit, DegradationEndsAtTheResidualStiffness) {
 
 namespace {
 
-/// A strip [−a, a] × [0, height] of one phase-field material (l₀ = 1 mm, G_c = 100 J/m²) on a grid
-/// of cell h with 2 particles per cell, placed so that a particle column sits on x = 0: the
-/// lattice is grid.min + (i + ½) s with s = h/2 and grid.min.x = −(N + ½) s. The strip's ends lie
-/// half a spacing beyond the outermost columns, so the body is exactly [−a, a] with a = (n + ½) s.
-std::string strip_scene(double h, const std::string& shape, int columns_each_side, double height) {
-  const double s = h / 2.0;
-  const double a = (columns_each_side + 0.5) * s;
-  const double gmin = -(std::ceil((a + 4 * h) / s) + 0.5) * s;
-  char text[2048];
-  std::snprintf(text, sizeof text, R"(
-[grid]
-cell_size = %.17g
-min = [%.17g, %.17g]
-max = [%.17g, %.17g]
-shape_function = "%s"
-particles_per_cell = 2
-[[materials]]
-name = "rock"
-E = "10 GPa"
-nu = 0.2
-density = "2000 kg/m3"
-damage = "phase-field"
-length_scale = "1 mm"
-fracture_energy = "100 J/m2"
-[[bodies]]
-name = "strip"
-material = "rock"
-shape = "box"
-min = [%.17g, 0.0]
-max = [%.17g, %.17g]
-[stop]
-max_steps = 1
-)",
-                h, gmin, -4 * h, -gmin, height + 4 * h, shape.c_str(), -a, a, height);
-  return text;
-}
-
+// The strip of pipeline::phase_field_strip_scene: l₀ = 1 mm, G_c = 100 J/m².
 constexpr double l0 = 1e-3, Gc = 100.0;
 
 }  // namespace
@@ -184,7 +148,8 @@ TEST(PhaseField, UniformHistoryGivesThePointwiseSolutionEverywhere) {
   // With H the same at every particle the constant d = (1 − k_f) H / (G_c/(4 l₀) + (1 − k_f) H)
   // solves the discrete system exactly (partition of unity), free edges included.
   for (const char* shape : {"bspline2", "linear", "cpdi"}) {
-    auto problem = pipeline::parse_scene(strip_scene(0.5e-3, shape, 20, 2e-3), "strip.toml");
+    auto problem = pipeline::parse_scene(pipeline::phase_field_strip_scene(0.5e-3, shape, 20, 2e-3),
+                                         "strip.toml");
     const double H = 0.7 * Gc / (4 * l0);
     for (double& h : problem.particles.damage_history) h = H;
     mpm::Solver<2> solver(std::move(problem));
@@ -214,7 +179,7 @@ TEST(PhaseField, BodiesKeepSeparateFields) {
   // leaves the right one untouched (each body is its own field, [KT19] eq. (28)); the same
   // geometry as one body carries the crack across.
   auto run = [](bool two_bodies) {
-    std::string text = strip_scene(0.5e-3, "bspline2", 20, 2e-3);
+    std::string text = pipeline::phase_field_strip_scene(0.5e-3, "bspline2", 20, 2e-3);
     if (two_bodies) {
       const auto at = text.find("[[bodies]]");
       const auto end = text.find("[stop]");
@@ -299,4 +264,23 @@ TEST(PhaseField, CrackEnergyClosesTheEnergyBalance) {
   EXPECT_GT(row.totals.fracture_energy, 0.5 * input * 0.1);
   EXPECT_LT(worst, 0.02 * input);
   EXPECT_EQ(row.totals.dissipated, 0.0);  // the phase field books nothing as damage dissipation
+}
+
+TEST(PhaseField, WorkCountsOneStageRunPerStep) {
+  // The bar starts without history: no solve at construction, then one stage run per step, each
+  // with conjugate-gradient iterations once the history is non-zero. A scene without the phase
+  // field reports nothing.
+  mpm::Solver<2> solver(pulled_bar());
+  EXPECT_EQ(solver.phase_field_work().runs, 0);
+  for (int s = 0; s < 40; ++s) ASSERT_FALSE(solver.step());
+  const mpm::PhaseFieldWork& work = solver.phase_field_work();
+  EXPECT_EQ(work.runs, 40);
+  EXPECT_GT(work.iterations, 0);
+  EXPECT_GT(work.seconds, 0.0);
+  auto problem = pulled_bar();
+  for (auto& material : problem.materials) material.damage = mpm::NoDamage{};
+  mpm::Solver<2> elastic(std::move(problem));
+  for (int s = 0; s < 5; ++s) ASSERT_FALSE(elastic.step());
+  EXPECT_EQ(elastic.phase_field_work().runs, 0);
+  EXPECT_EQ(elastic.phase_field_work().seconds, 0.0);
 }

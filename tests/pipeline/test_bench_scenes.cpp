@@ -113,3 +113,27 @@ TEST(BenchScenes, BrazilianDiskAtItsPaperCellIs15450Particles) {
   // 9598 draws: the sample median lies within 1 % of the distribution's.
   EXPECT_NEAR(disk[disk.size() / 2] / median, 1.0, 0.01);
 }
+
+TEST(BenchScenes, DamageBlockTakesEachLawAndPassesThePhaseFieldPeak) {
+  // The weak material of the damage-law comparison: 10 000 particles at the file's 2 mm cell, on
+  // quadratic B-splines. With l₀ = 1 mm and G_c = 1 J/m² the homogeneous AT2 peak stress
+  // (9/16) √(E G_c / (6 l₀)) is 1.62 MPa, a little above the 1 MPa strength of the other laws.
+  const std::string text = fp::embedded_scene("bench/damage-block.toml");
+  const mpm::Problem<2> none = fp::parse_scene(text, "damage-block.toml");
+  ASSERT_EQ(none.particles.size(), 10000u);
+  EXPECT_EQ(none.grid.shape_function, mpm::ShapeFunctionKind::bspline2);
+  EXPECT_FALSE(module_on(none, "damage"));
+  const mpm::Problem<2> phase_field =
+      fp::parse_scene(fp::with_overrides(text, {{"grid.cell_size", "\"1 mm\""},  // l₀ ≥ h
+                                                {"materials[0].damage", "\"phase-field\""},
+                                                {"materials[0].length_scale", "\"1 mm\""},
+                                                {"materials[0].fracture_energy", "\"1 J/m2\""}}),
+                      "damage-block.toml");
+  const auto& m = phase_field.materials[0];
+  const auto& law = std::get<mpm::PhaseField>(m.damage);
+  const double E =
+      9.0 * m.bulk_modulus * m.shear_modulus / (3.0 * m.bulk_modulus + m.shear_modulus);
+  EXPECT_NEAR(E, 50e9, 1e-3);
+  EXPECT_NEAR(9.0 / 16.0 * std::sqrt(E * law.fracture_energy / (6.0 * law.length_scale)), 1.624e6,
+              0.001e6);
+}

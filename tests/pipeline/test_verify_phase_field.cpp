@@ -4,7 +4,9 @@
 // pulled bar with a partial crack ends with one crack of energy G_c × height.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "fragmpm/analysis/fragments.hpp"
 #include "fragmpm/mpm/solver.hpp"
@@ -14,6 +16,33 @@
 #include "fragmpm/pipeline/verify_phase_field.hpp"
 
 using namespace fragmpm::pipeline;
+
+TEST(VerifyPhaseField, StripSceneHasAColumnOnTheCrackLineAndEndsAtA) {
+  // h = 0.5 mm, n = 20 columns each side, 2 mm high: s = 0.25 mm, a = 20.5 s = 5.125 mm; the
+  // lattice's columns at x = k s, k = −20 … 20, and 8 rows of 0.25 mm in the height.
+  for (const char* shape : {"bspline2", "linear"}) {
+    const auto problem =
+        parse_scene(phase_field_strip_scene(0.5e-3, shape, 20, 2e-3), "strip.toml");
+    const auto& P = problem.particles;
+    ASSERT_EQ(P.size(), 41u * 8u) << shape;
+    double left = 1e300, right = -1e300, on_line = 0.0, mass = 0.0;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      const double column = P.x[p][0] / 0.25e-3;
+      EXPECT_NEAR(column, std::round(column), 1e-9) << p;
+      on_line += std::abs(P.x[p][0]) < 1e-12;
+      left = std::min(left, P.x[p][0]);
+      right = std::max(right, P.x[p][0]);
+      mass += P.mass[p];
+    }
+    EXPECT_EQ(on_line, 8.0);
+    EXPECT_NEAR(left, -5e-3, 1e-15);
+    EXPECT_NEAR(right, 5e-3, 1e-15);
+    EXPECT_NEAR(mass, 2000.0 * 10.25e-3 * 2e-3, 1e-12);  // ρ × (2a × height), unit thickness
+    const auto& law = std::get<fragmpm::mpm::PhaseField>(problem.materials[0].damage);
+    EXPECT_EQ(law.length_scale, 1e-3);
+    EXPECT_EQ(law.fracture_energy, 100.0);
+  }
+}
 
 TEST(VerifyPhaseField, ImposedCrackHasTheClosedFormProfileAndEnergy) {
   // Measured (B-spline, 2 particles per cell, l₀ = 1 mm):

@@ -53,20 +53,105 @@ struct BenchCase {
   int steps;
 };
 
-mpm::Problem<2> bench_block(const std::string& scene, long long target_particles) {
+/// One of the 100 mm blocks of scenes/bench/ (`name`, e.g. "elastic-block", with the scene text
+/// `scene`) at about `target_particles`.
+mpm::Problem<2> bench_block(const std::string& name, const std::string& scene,
+                            long long target_particles) {
   // 2×2 particles per cell over a 100 mm square block: N = 4 (0.1/h)².
   const double cells = std::round(std::sqrt(double(target_particles) / 4.0));
   const double cell_size = 0.1 / cells;
   mpm::Problem<2> problem =
-      parse_scene(with_overrides(embedded_scene("bench/" + scene + ".toml"),
-                                 {{"grid.cell_size", toml_number(cell_size)}}),
-                  "scenes/bench/" + scene + ".toml");
+      parse_scene(with_overrides(scene, {{"grid.cell_size", toml_number(cell_size)}}),
+                  "scenes/bench/" + name + ".toml");
   for (std::size_t p = 0; p < problem.particles.size(); ++p) {
     const mpm::Vec<2>& x = problem.particles.x[p];
     problem.particles.v[p] = mpm::Vec<2>(0.5 * std::sin(std::numbers::pi * x[1] / 0.1),
                                          0.2 * std::sin(std::numbers::pi * x[0] / 0.1));
   }
   return problem;
+}
+
+/// A damage law of the damage-law comparison: its label and the material keys that select it.
+struct DamageCase {
+  const char* label;
+  std::map<std::string, std::string> material;  ///< overrides of materials[0]
+};
+
+std::vector<DamageCase> damage_cases() {
+  return {
+      {"none", {{"damage", "\"none\""}}},
+      {"rankine",
+       {{"damage", "\"rankine\""}, {"strength", "\"1 MPa\""}, {"fracture_energy", "\"1 J/m2\""}}},
+      {"time-to-failure",
+       {{"damage", "\"time-to-failure\""},
+        {"strength", "\"1 MPa\""},
+        {"crack_speed", "\"2 km/s\""}}},
+      {"phase-field",
+       {{"damage", "\"phase-field\""},
+        {"length_scale", "\"1 mm\""},
+        {"fracture_energy", "\"1 J/m2\""}}},
+  };
+}
+
+/// The cost per step of each damage law on scenes/bench/damage-block.toml at 1e5 particles, and of
+/// the phase-field stage within its step: the stage's own clock (Solver::phase_field_work) against
+/// the rest of the same steps, and against the step without damage.
+int run_damage_laws(bool quick, const std::vector<int>& thread_counts) {
+  const long long target_particles = 100000;
+  const int steps = quick ? 60 : 150;
+  std::printf(
+      "\ndamage laws (scenes/bench/damage-block.toml: the free block on quadratic B-splines, "
+      "%d steps after one warm-up step)\n",
+      steps);
+  std::printf("%-16s %9s %7s %10s %14s %14s %12s %10s %8s\n", "law", "particles", "threads",
+              "ms/step", "phase field ms", "rest of step ms", "pf / rest", "CG iter", "max d");
+  for (int threads : thread_counts) {
+    double undamaged = 0.0;  // [s] per step without damage
+    for (const DamageCase& law : damage_cases()) {
+      omp_set_num_threads(threads);
+      std::map<std::string, std::string> overrides;
+      for (const auto& [key, value] : law.material) overrides["materials[0]." + key] = value;
+      const std::string scene =
+          with_overrides(embedded_scene("bench/damage-block.toml"), overrides);
+      mpm::Solver<2> solver(bench_block("damage-block", scene, target_particles));
+      if (auto failure = solver.step()) {
+        std::fprintf(stderr, "bench: %s\n", failure->what.c_str());
+        return 3;
+      }
+      const mpm::PhaseFieldWork before = solver.phase_field_work();
+      const auto start = Clock::now();
+      for (int s = 0; s < steps; ++s)
+        if (auto failure = solver.step()) {
+          std::fprintf(stderr, "bench: %s\n", failure->what.c_str());
+          return 3;
+        }
+      const double per_step =
+          std::chrono::duration<double>(Clock::now() - start).count() / double(steps);
+      const mpm::PhaseFieldWork& after = solver.phase_field_work();
+      const double phase_field = (after.seconds - before.seconds) / double(steps);
+      const double rest = per_step - phase_field;
+      double largest_damage = 0.0;
+      for (double d : solver.particles().damage) largest_damage = std::max(largest_damage, d);
+      if (std::string(law.label) == "none") undamaged = per_step;
+      std::printf("%-16s %9zu %7d %10.2f", law.label, solver.particles().size(), threads,
+                  1e3 * per_step);
+      if (after.runs > 0)
+        std::printf(
+            " %14.2f %14.2f %12.2f %10.1f", 1e3 * phase_field, 1e3 * rest, phase_field / rest,
+            double(after.iterations - before.iterations) / double(after.runs - before.runs));
+      else
+        std::printf(" %14s %14s %12s %10s", "-", "-", "-", "-");
+      std::printf(" %8.3f", largest_damage);
+      if (undamaged > 0.0 && std::string(law.label) != "none")
+        std::printf("   +%.0f %% over no damage", 100.0 * (per_step / undamaged - 1.0));
+      std::printf("\n");
+      std::fflush(stdout);
+    }
+  }
+  std::printf(
+      "pf / rest: the phase-field stage (assembly, conjugate gradients, interpolation) over the "
+      "rest of the same steps.\n");
+  return 0;
 }
 
 /// A peer scene: a problem other MPM codes run at the same size and step, for side-by-side
@@ -157,7 +242,8 @@ int run_peer_scenes(bool quick, const std::vector<int>& thread_counts, int repea
   return 0;
 }
 
-int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_only) {
+int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_only,
+            bool damage_only) {
   const std::vector<BenchCase> cases =
       quick ? std::vector<BenchCase>{{10000, 50}, {100000, 8}}
             : std::vector<BenchCase>{{10000, 400}, {100000, 60}, {1000000, 8}};
@@ -168,6 +254,7 @@ int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_
   const std::size_t triad_elements = quick ? (std::size_t(1) << 22) : (std::size_t(1) << 24);
   if (repeats <= 0) repeats = quick ? 1 : 3;
   if (peers_only) return run_peer_scenes(quick, thread_counts, repeats, triad_elements);
+  if (damage_only) return run_damage_laws(quick, thread_counts);
   std::printf(
       "fragmpm bench%s: elastic block (one field) and the same block as two touching bodies "
       "(partitioned contact), CPDI, 2x2 particles per cell, %d core(s)\n",
@@ -179,7 +266,8 @@ int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_
       double elastic_rate = 0.0;
       for (const std::string scene : {"elastic-block", "partitioned-block"}) {
         omp_set_num_threads(threads);
-        mpm::Solver<2> solver(bench_block(scene, c.target_particles));
+        mpm::Solver<2> solver(
+            bench_block(scene, embedded_scene("bench/" + scene + ".toml"), c.target_particles));
         if (auto failure = solver.step()) {  // warm-up: first touch of the grid and buffers
           std::fprintf(stderr, "bench: %s\n", failure->what.c_str());
           return 3;
@@ -209,6 +297,7 @@ int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_
   std::printf(
       "bytes/particle-step = triad bandwidth / particle-step rate: the memory traffic one "
       "particle-step is worth on this machine (lower is better, comparable across machines).\n");
+  if (const int code = run_damage_laws(quick, thread_counts)) return code;
   return run_peer_scenes(quick, thread_counts, repeats, triad_elements);
 }
 
@@ -219,6 +308,7 @@ void add_bench_command(CLI::App& app, CommandResult& result) {
   auto threads = std::make_shared<std::vector<int>>();
   auto repeats = std::make_shared<int>(0);
   auto peers_only = std::make_shared<bool>(false);
+  auto damage_only = std::make_shared<bool>(false);
   CLI::App* bench =
       app.add_subcommand("bench", "Particle-steps per second next to a memory-bandwidth reference");
   bench->add_flag("--quick", *quick,
@@ -232,8 +322,11 @@ void add_bench_command(CLI::App& app, CommandResult& result) {
       ->check(CLI::Range(1, 1000));
   bench->add_flag("--peers-only", *peers_only,
                   "Only the peer scenes (block, disks, Brazilian disk)");
-  bench->callback([quick, threads, repeats, peers_only, &result] {
-    result.exit_code = execute(*quick, *threads, *repeats, *peers_only);
+  bench->add_flag("--damage-laws-only", *damage_only,
+                  "Only the damage-law comparison (no damage, Rankine, time-to-failure, phase "
+                  "field at 1e5 particles)");
+  bench->callback([quick, threads, repeats, peers_only, damage_only, &result] {
+    result.exit_code = execute(*quick, *threads, *repeats, *peers_only, *damage_only);
   });
 }
 

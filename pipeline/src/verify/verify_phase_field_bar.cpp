@@ -31,45 +31,6 @@ constexpr double fracture_energy = 100.0;  // G_c [J/m²]
 constexpr double bar_height = 2e-3;        // [m]
 constexpr double mid_length = 10e-3;       // [m]
 
-/// A strip [−a, a] × [0, height] on a grid with a particle column on x = 0: the lattice is
-/// grid.min + (i + ½) s, s = h/2, with grid.min.x = −(N + ½) s; the strip ends half a spacing
-/// beyond the outermost columns, a = (n + ½) s.
-std::string strip_scene(double h, const std::string& shape, int columns_each_side, double height,
-                        const std::string& material_extra = "") {
-  const double s = h / 2.0;
-  const double a = (columns_each_side + 0.5) * s;
-  const double gmin = -(std::ceil((a + 4 * h) / s) + 0.5) * s;
-  char text[2048];
-  std::snprintf(text, sizeof text, R"(
-[grid]
-cell_size = %.17g
-min = [%.17g, %.17g]
-max = [%.17g, %.17g]
-shape_function = "%s"
-particles_per_cell = 2
-[[materials]]
-name = "rock"
-E = "10 GPa"
-nu = 0.0
-density = "2000 kg/m3"
-damage = "phase-field"
-length_scale = %.17g
-fracture_energy = %.17g
-%s
-[[bodies]]
-name = "strip"
-material = "rock"
-shape = "box"
-min = [%.17g, 0.0]
-max = [%.17g, %.17g]
-[stop]
-max_steps = 1
-)",
-                h, gmin, -4 * h, -gmin, height + 4 * h, shape.c_str(), length_scale,
-                fracture_energy, material_extra.c_str(), -a, a, height);
-  return text;
-}
-
 struct BarVariant {
   const char* name;
   bool seeded;               ///< partial crack on the mid-length column
@@ -162,6 +123,44 @@ constexpr BarVariant bar_variants[] = {{"seeded", true, 0.5, "auto", true},
 
 }  // namespace
 
+// The lattice is grid.min + (i + ½) s, s = h/2, with grid.min.x = −(N + ½) s, so a column sits on
+// x = 0; the strip ends half a spacing beyond the outermost columns, a = (n + ½) s.
+std::string phase_field_strip_scene(double h, const std::string& shape, int columns_each_side,
+                                    double height, const std::string& material_extra) {
+  const double s = h / 2.0;
+  const double a = (columns_each_side + 0.5) * s;
+  const double gmin = -(std::ceil((a + 4 * h) / s) + 0.5) * s;
+  char text[2048];
+  std::snprintf(text, sizeof text, R"(
+[grid]
+cell_size = %.17g
+min = [%.17g, %.17g]
+max = [%.17g, %.17g]
+shape_function = "%s"
+particles_per_cell = 2
+[[materials]]
+name = "rock"
+E = "10 GPa"
+nu = 0.0
+density = "2000 kg/m3"
+damage = "phase-field"
+length_scale = %.17g
+fracture_energy = %.17g
+%s
+[[bodies]]
+name = "strip"
+material = "rock"
+shape = "box"
+min = [%.17g, 0.0]
+max = [%.17g, %.17g]
+[stop]
+max_steps = 1
+)",
+                h, gmin, -4 * h, -gmin, height + 4 * h, shape.c_str(), length_scale,
+                fracture_energy, material_extra.c_str(), -a, a, height);
+  return text;
+}
+
 std::vector<VerifyRow> phase_field_bar_level(const std::string& variant, int level,
                                              double cell_size) {
   for (const BarVariant& v : bar_variants)
@@ -191,7 +190,7 @@ CrackProfile phase_field_crack_profile(double cell_size, const std::string& shap
   // One solve of the strip of this height; its particles and crack energy.
   auto solve = [&](double height) {
     mpm::Problem<2> problem =
-        parse_scene(strip_scene(cell_size, shape, n, height, extra), "strip.toml");
+        parse_scene(phase_field_strip_scene(cell_size, shape, n, height, extra), "strip.toml");
     auto& P = problem.particles;
     for (std::size_t p = 0; p < P.size(); ++p)
       if (std::abs(P.x[p][0]) < 0.25 * s)

@@ -41,6 +41,14 @@ bool partitioning_active(const Problem<D>& problem);
 template <int D>
 double stable_time_step(const Problem<D>& problem, const Particles<D>& particles, double cfl);
 
+/// What the phase-field stage ([KT19] Alg. 1) has cost so far; all zero without a phase-field
+/// material. For `fragmpm bench`, which sets it against the rest of the step.
+struct PhaseFieldWork {
+  long long runs = 0;        ///< one a step, and one at the start when the scene sets a history
+  long long iterations = 0;  ///< conjugate-gradient iterations over all solves
+  double seconds = 0.0;      ///< wall time in the stage: assembly, solve, interpolation [s]
+};
+
 template <int D>
 class Solver {
  public:
@@ -64,6 +72,7 @@ class Solver {
   Vec<D> wall_displacement(std::size_t wall) const;
   /// CFL limit (with C_cfl) from the current state: the adaptive Δt of the next step [s].
   double stable_dt() const;
+  const PhaseFieldWork& phase_field_work() const;
 
   /// Restores a checkpointed state (time, step, accumulators, particles must come from the same
   /// problem).

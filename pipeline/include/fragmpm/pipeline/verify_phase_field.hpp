@@ -11,6 +11,17 @@
 
 namespace fragmpm::pipeline {
 
+/// The scene of a strip [−a, a] × [0, height] [m] of one phase-field material (l₀ = 1 mm,
+/// G_c = 100 J/m², E = 10 GPa, ν = 0, no load, one step) with 2 particles per cell of size
+/// `cell_size` [m]: the particle lattice has spacing s = h/2 and a column on x = 0, the outermost
+/// columns stand at x = ±n s (n = `columns_each_side`) and the body ends half a spacing beyond
+/// them, a = (n + ½) s; the grid reaches 4 cells past the body on every side. `shape`: a [grid]
+/// shape_function name; `material_extra`: TOML lines added to the material (e.g. an anisotropy).
+/// The scene of the imposed-crack checks below and of the phase-field solver's tests.
+std::string phase_field_strip_scene(double cell_size, const std::string& shape,
+                                    int columns_each_side, double height,
+                                    const std::string& material_extra = "");
+
 /// An imposed straight crack on a strip (l₀ = 1 mm, G_c = 100 J/m², 2 particles per cell): the
 /// particle column at x = 0 carries a history 10⁸ G_c/(4 l₀), the phase field is solved once, and
 /// the particles' d is compared with d = cosh((a − |x|)/(2 l₀)) / cosh(a/(2 l₀)), the solution
