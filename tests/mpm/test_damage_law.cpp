@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "fragmpm/mpm/damage_law.hpp"
@@ -398,6 +399,39 @@ TEST(DamageLaw, OneSpectralDecompositionGivesBothDegradedStressAndDegradableEner
 
 namespace {
 
+/// First Piola–Kirchhoff stress P = J σ F⁻ᵀ of a particle at fixed damage, from the elastic law
+/// the degradation acts on.
+mpm::Mat<2> nominal_stress(const mpm::NeoHookean& m, const mpm::Mat<2>& F, double damage,
+                           mpm::Degradation degradation) {
+  mpm::Mat<2> trial;
+  double psi;
+  mpm::elastic_stress_and_energy<2>(m, F, degradation, trial, psi);
+  const mpm::Mat<2> stress =
+      mpm::degrade_with_energy<2>(m, F, trial, damage, degradation, psi).stress;
+  return mpm::Mat<2>(F.determinant() * stress * F.inverse().transpose());
+}
+
+/// Work ∫ P : dF at fixed damage along an open path from I to a sheared and squeezed F (trapezoidal
+/// rule), and the stored energy ψ − d ψ_t at its end: equal for a split that is a potential.
+std::pair<double, double> open_path_work_and_stored(const mpm::NeoHookean& m, double damage,
+                                                    mpm::Degradation degradation) {
+  mpm::Mat<2> F = mpm::Mat<2>::Identity(), F_old = F;
+  double work = 0.0;
+  mpm::Mat<2> P_old = nominal_stress(m, F, damage, degradation);
+  for (int k = 1; k <= 20000; ++k) {
+    const double t = double(k) / 20000;
+    F << 1.0 + 0.2 * t, 0.3 * t, 0.0, 1.0 - 0.35 * t;
+    const mpm::Mat<2> P = nominal_stress(m, F, damage, degradation);
+    work += 0.5 * (P + P_old).cwiseProduct(F - F_old).sum();
+    F_old = F;
+    P_old = P;
+  }
+  mpm::Mat<2> trial;
+  double psi;
+  mpm::elastic_stress_and_energy<2>(m, F, degradation, trial, psi);
+  return {work, psi - damage * mpm::degradable_energy<2>(m, F, degradation)};
+}
+
 /// Net work per reference volume of a damaged particle (fixed d) around a closed, non-proportional
 /// path of F: compress, shear, stretch, return. Trapezoidal rule on P = J σ F⁻ᵀ : dF with fine
 /// steps.
@@ -411,14 +445,7 @@ double cycle_work(const mpm::NeoHookean& m, double damage, mpm::Degradation degr
     F(0, 0) = 1.0 + 0.5 * b - 0.5 * e;  // stretch in x with the shear
     return F;
   };
-  auto nominal = [&](const mpm::Mat<2>& F) {
-    mpm::Mat<2> trial;
-    double psi;
-    mpm::elastic_stress_and_energy<2>(m, F, degradation, trial, psi);
-    const mpm::Mat<2> stress =
-        mpm::degrade_with_energy<2>(m, F, trial, damage, degradation, psi).stress;
-    return mpm::Mat<2>(F.determinant() * stress * F.inverse().transpose());
-  };
+  auto nominal = [&](const mpm::Mat<2>& F) { return nominal_stress(m, F, damage, degradation); };
   const int n = 40000;
   double work = 0.0;
   mpm::Mat<2> F_old = path(0.0), P_old = nominal(F_old);
@@ -446,28 +473,8 @@ TEST(DamageLaw, VolumetricDeviatoricSplitDerivesFromAPotential) {
   EXPECT_GT(std::abs(cycle_work(m, 1.0, mpm::Degradation::tensile_spectral)), 1e-2 * scale);
 
   // Stored energy equals the work along an open path (start undeformed, end sheared and squeezed).
-  const double d = 0.7;
-  mpm::Mat<2> F = mpm::Mat<2>::Identity(), F_old = F;
-  auto nominal = [&](const mpm::Mat<2>& G) {
-    const mpm::Mat<2> stress =
-        mpm::degrade_with_energy<2>(m, G, m.cauchy<2>(G), d,
-                                    mpm::Degradation::volumetric_deviatoric, m.energy_density<2>(G))
-            .stress;
-    return mpm::Mat<2>(G.determinant() * stress * G.inverse().transpose());
-  };
-  double work = 0.0;
-  mpm::Mat<2> P_old = nominal(F);
-  for (int k = 1; k <= 20000; ++k) {
-    const double t = double(k) / 20000;
-    F << 1.0 + 0.2 * t, 0.3 * t, 0.0, 1.0 - 0.35 * t;
-    const mpm::Mat<2> P = nominal(F);
-    work += 0.5 * (P + P_old).cwiseProduct(F - F_old).sum();
-    F_old = F;
-    P_old = P;
-  }
-  const double stored =
-      m.energy_density<2>(F) -
-      d * mpm::degradable_energy<2>(m, F, mpm::Degradation::volumetric_deviatoric);
+  const auto [work, stored] =
+      open_path_work_and_stored(m, 0.7, mpm::Degradation::volumetric_deviatoric);
   EXPECT_NEAR(work, stored, 1e-6 * std::abs(stored));
 }
 
@@ -503,30 +510,7 @@ TEST(DamageLaw, HenckySpectralSplitDerivesFromAPotentialAndReleasesExactlyPsiPlu
     EXPECT_NEAR(cycle_work(m, d, mpm::Degradation::hencky_spectral), 0.0, 1e-6 * scale)
         << "d = " << d;
 
-  const double d = 0.7;
-  const auto degradation = mpm::Degradation::hencky_spectral;
-  auto nominal = [&](const mpm::Mat<2>& G) {
-    mpm::Mat<2> trial;
-    double psi;
-    mpm::elastic_stress_and_energy<2>(m, G, degradation, trial, psi);
-    const mpm::Mat<2> stress = mpm::degrade_with_energy<2>(m, G, trial, d, degradation, psi).stress;
-    return mpm::Mat<2>(G.determinant() * stress * G.inverse().transpose());
-  };
-  mpm::Mat<2> F = mpm::Mat<2>::Identity(), F_old = F;
-  double work = 0.0;
-  mpm::Mat<2> P_old = nominal(F);
-  for (int k = 1; k <= 20000; ++k) {
-    const double t = double(k) / 20000;
-    F << 1.0 + 0.2 * t, 0.3 * t, 0.0, 1.0 - 0.35 * t;
-    const mpm::Mat<2> P = nominal(F);
-    work += 0.5 * (P + P_old).cwiseProduct(F - F_old).sum();
-    F_old = F;
-    P_old = P;
-  }
-  mpm::Mat<2> trial;
-  double psi;
-  mpm::elastic_stress_and_energy<2>(m, F, degradation, trial, psi);
-  const double stored = psi - d * mpm::degradable_energy<2>(m, F, degradation);
+  const auto [work, stored] = open_path_work_and_stored(m, 0.7, mpm::Degradation::hencky_spectral);
   EXPECT_NEAR(work, stored, 1e-6 * std::abs(stored));
 }
 
