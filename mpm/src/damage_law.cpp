@@ -164,7 +164,7 @@ TensileSplit<D> hencky_split(const NeoHookean& model, const Mat<D>& F) {
 
 template <int D>
 void elastic_stress_and_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation,
-                               Mat<D>& stress, double& psi) {
+                               Mat<D>& stress, double& psi, TensileSplit<D>* split_out) {
   if (degradation != Degradation::hencky_spectral) {
     model.stress_and_energy<D>(F, stress, psi);
     return;
@@ -172,6 +172,20 @@ void elastic_stress_and_energy(const NeoHookean& model, const Mat<D>& F, Degrada
   const TensileSplit<D> split = hencky_split<D>(model, F);
   stress = split.tensile_stress + split.compressive_stress;
   psi = split.tensile_energy + split.compressive_energy;
+  if (split_out) *split_out = split;
+}
+
+template <int D>
+DegradedState<D> degrade_hencky(const TensileSplit<D>& split, const Mat<D>& thermal_stress,
+                                double J, double damage) {
+  // σ = σ⁻ + (1 − d) σ⁺, the derivative of ψ⁻ + (1 − d) ψ⁺ ([KT19] eq. (14)-(16) with the
+  // linear degradation of [HH17] eq. (26) in place of g(d)). The thermal pressure acts on the
+  // volume and, as U(J) in ψ⁺ or ψ⁻, degrades only in expansion (tr ε = ln J > 0), which
+  // coupling_fraction assumes.
+  const double volumetric_factor = J > 1.0 ? 1.0 - damage : 1.0;
+  return {split.compressive_stress + (1.0 - damage) * split.tensile_stress +
+              volumetric_factor * thermal_stress,
+          split.tensile_energy};
 }
 
 template <int D>
@@ -224,16 +238,9 @@ DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F,
     return {stress, log_J > 0.0 ? psi : psi - volumetric_energy};
   }
   if (degradation == Degradation::hencky_spectral) {
-    // σ = σ⁻ + (1 − d) σ⁺, the derivative of ψ⁻ + (1 − d) ψ⁺ ([KT19] eq. (14)-(16) with the
-    // linear degradation of [HH17] eq. (26) in place of g(d)). The rest of the trial stress is the
-    // isotropic thermal pressure; it acts on the volume and, as U(J) in ψ⁺ or ψ⁻, degrades only
-    // in expansion (tr ε = ln J > 0), which coupling_fraction assumes.
     const TensileSplit<D> split = hencky_split<D>(model, F);
-    const Mat<D> thermal = trial_stress - split.tensile_stress - split.compressive_stress;
-    const double volumetric_factor = F.determinant() > 1.0 ? 1.0 - damage : 1.0;
-    return {split.compressive_stress + (1.0 - damage) * split.tensile_stress +
-                volumetric_factor * thermal,
-            split.tensile_energy};
+    return degrade_hencky<D>(split, trial_stress - split.tensile_stress - split.compressive_stress,
+                             F.determinant(), damage);
   }
   const Mat<D> b = F * F.transpose();
   const Mat<D> tau = model.kirchhoff<D>(F);
@@ -281,9 +288,11 @@ template void update_damage<3>(const DamageLaw&, const Mat<3>&, double, double, 
 template Mat<2> degrade_stress<2>(const Mat<2>&, double, Degradation);
 template Mat<3> degrade_stress<3>(const Mat<3>&, double, Degradation);
 template void elastic_stress_and_energy<2>(const NeoHookean&, const Mat<2>&, Degradation, Mat<2>&,
-                                           double&);
+                                           double&, TensileSplit<2>*);
 template void elastic_stress_and_energy<3>(const NeoHookean&, const Mat<3>&, Degradation, Mat<3>&,
-                                           double&);
+                                           double&, TensileSplit<3>*);
+template DegradedState<2> degrade_hencky<2>(const TensileSplit<2>&, const Mat<2>&, double, double);
+template DegradedState<3> degrade_hencky<3>(const TensileSplit<3>&, const Mat<3>&, double, double);
 template double degradable_energy<2>(const NeoHookean&, const Mat<2>&, Degradation);
 template double degradable_energy<3>(const NeoHookean&, const Mat<3>&, Degradation);
 template DegradedState<2> degrade_with_energy<2>(const NeoHookean&, const Mat<2>&, const Mat<2>&,

@@ -23,13 +23,14 @@ struct ConstitutiveResult {
 /// The trial (undamaged) stress σ̄ of particle p from F and, with the thermal module, θ. The
 /// elastic law is the neo-Hookean, or the Hencky energy of a material degraded by its split.
 template <int D, bool Thermal>
-inline Mat<D> trial_stress(const StepState<D>& state, std::int64_t p, double& psi) {
+inline Mat<D> trial_stress(const StepState<D>& state, std::int64_t p, double& psi,
+                           TensileSplit<D>* split = nullptr) {
   const auto& P = state.problem.particles;
   const int material = P.material[p];
   Mat<D> trial;
   elastic_stress_and_energy<D>(
       state.models[static_cast<std::size_t>(material)], P.F[p],
-      state.problem.materials[static_cast<std::size_t>(material)].degradation, trial, psi);
+      state.problem.materials[static_cast<std::size_t>(material)].degradation, trial, psi, split);
   if constexpr (Thermal) trial += state.thermal->stress(material, P.F[p], P.temperature[p]);
   return trial;
 }
@@ -67,7 +68,8 @@ inline ConstitutiveResult update_constitutive(
   if (law == material_phase_field) return update_phase_field_particle<D, AdvanceDamage>(state, p);
   const NeoHookean& model = state.models[static_cast<std::size_t>(material)];
   double psi;
-  const Mat<D> trial = trial_stress<D, Thermal>(state, p, psi);
+  TensileSplit<D> split;  // filled only for a Hencky-split material, reused by its degradation
+  const Mat<D> trial = trial_stress<D, Thermal>(state, p, psi, &split);
   if (!law) {
     P.stress[p] = trial;
     return {psi, 0.0};
@@ -89,7 +91,10 @@ inline ConstitutiveResult update_constitutive(
     return {psi, 0.0};
   }
   const DegradedState<D> degraded =
-      degrade_with_energy<D>(model, P.F[p], trial, d, spec.degradation, psi);
+      spec.degradation == Degradation::hencky_spectral
+          ? degrade_hencky<D>(split, trial - split.tensile_stress - split.compressive_stress,
+                              P.F[p].determinant(), d)
+          : degrade_with_energy<D>(model, P.F[p], trial, d, spec.degradation, psi);
   // ½ Σ τᵢ ln λᵢ is the exact released energy only at small strain; at large stretch it can exceed
   // ψ itself, so it is bounded by ψ: damage never stores negative energy. (The potentials of the
   // volumetric-deviatoric and Hencky splits release at most ψ; the bound never acts on them.)

@@ -109,10 +109,11 @@ double largest_principal_stress(const Mat<D>& stress);
 
 /// The undamaged elastic response that `degradation` acts on: the neo-Hookean model's Cauchy
 /// stress [Pa] and energy ψ(F) [J/m³], or for Degradation::hencky_spectral the Hencky energy
-/// ψ⁺ + ψ⁻ with the same bulk and shear moduli and its Cauchy stress σ⁺ + σ⁻.
+/// ψ⁺ + ψ⁻ with the same bulk and shear moduli and its Cauchy stress σ⁺ + σ⁻. For the latter,
+/// `split` (when given) receives the split, so that degrade_hencky need not compute it again.
 template <int D>
 void elastic_stress_and_energy(const NeoHookean& model, const Mat<D>& F, Degradation degradation,
-                               Mat<D>& stress, double& psi);
+                               Mat<D>& stress, double& psi, TensileSplit<D>* split = nullptr);
 
 /// Degraded Cauchy stress [Pa] from the trial stress σ̄ and damage d: tensile principal stresses
 /// scaled by (1 − d), compressive ones kept, same eigenvectors ([HH17] eq. (26)-(27)); or σ = (1 −
@@ -150,6 +151,13 @@ template <int D>
 DegradedState<D> degrade_with_energy(const NeoHookean& model, const Mat<D>& F,
                                      const Mat<D>& trial_stress, double damage,
                                      Degradation degradation, double psi);
+
+/// Degradation::hencky_spectral from the split of F: σ = σ⁻ + (1 − d) σ⁺ plus `thermal_stress`
+/// (the isotropic rest of the trial stress) scaled by (1 − d) only in expansion (J > 1), and
+/// ψ_t = ψ⁺.
+template <int D>
+DegradedState<D> degrade_hencky(const TensileSplit<D>& split, const Mat<D>& thermal_stress,
+                                double J, double damage);
 
 /// Median of the Weibull strength of a particle of volume V [m³]: σ̄_f (V̄ / V)^{1/m} ([HH17] eq.
 /// (25) with ℛ = ½). In 2D `volume` is an area and is multiplied by the thickness.
