@@ -15,7 +15,7 @@ void write_hertz_profile(const std::string& directory, const std::vector<HertzLe
   std::filesystem::create_directories(directory);
   const std::filesystem::path csv_path = std::filesystem::path(directory) / "hertz-profile.csv";
   std::ofstream csv(csv_path);
-  csv << "level,cell_size_m,x_m,pressure_Pa,analytic_Pa\n";
+  csv << "level,cell_size_m,x_m,pressure_Pa,analytic_Pa,analytic_nodal_Pa\n";
   csv.precision(10);
   analysis::PlotSpec spec;
   spec.title = "Hertz line contact: contact pressure on the flat";
@@ -30,7 +30,7 @@ void write_hertz_profile(const std::string& directory, const std::vector<HertzLe
     nodes.markers = true;
     for (const HertzProfilePoint& point : levels[k].profile) {
       csv << k << ',' << levels[k].cell_size << ',' << point.x << ',' << point.pressure << ','
-          << point.analytic << '\n';
+          << point.analytic << ',' << point.analytic_nodal << '\n';
       nodes.x.push_back(point.x * 1e3);
       nodes.y.push_back(point.pressure * 1e-6);
       reach = std::max(reach, std::abs(point.x));
@@ -46,6 +46,18 @@ void write_hertz_profile(const std::string& directory, const std::vector<HertzLe
     analytic.y.push_back(oracle.pressure(x) * 1e-6);
   }
   spec.series.insert(spec.series.begin(), std::move(analytic));
+  if (!levels.empty()) {  // what the finest level's nodes should read (HertzOracle::nodal_pressure)
+    analysis::LineSeries nodal;
+    char label[80];
+    std::snprintf(label, sizeof label, "eq. (89) read at the nodes, h = %.3g mm",
+                  levels.back().cell_size * 1e3);
+    nodal.label = label;
+    for (const HertzProfilePoint& point : levels.back().profile) {
+      nodal.x.push_back(point.x * 1e3);
+      nodal.y.push_back(point.analytic_nodal * 1e-6);
+    }
+    spec.series.insert(spec.series.begin() + 1, std::move(nodal));
+  }
   csv.close();
   std::printf("written %s\n", csv_path.string().c_str());
   const std::filesystem::path png_path = std::filesystem::path(directory) / "hertz-profile.png";

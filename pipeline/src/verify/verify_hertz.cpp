@@ -30,8 +30,14 @@
 // that line to the curved gap into force); the nodal sums are the resolved pressure. The
 // half-width is taken from the second moment of the contact force, b = 2 √(Σ f_p x_p² / Σ f_p),
 // which is exact for the elliptic profile (∫ x² p / ∫ p = b²/4) and does not depend on how the
-// force is divided among nodes. The RMS error runs over the nodes inside the analytic contact and
-// any loaded node outside it, divided by p_max.
+// force is divided among nodes. A nodal force is the hat-weighted integral of the pressure, so the
+// node's pressure is compared with HertzOracle::nodal_pressure, the same integral of eq. (89)
+// (closed form in verify_hertz.hpp), over every node where either is non-zero; the RMS error over
+// p_max gates the case. Against the point values p(x_i) the comparison carries the hat's own
+// averaging, which does not fall with h where it matters (at the edge of contact it is O(h/b) of
+// p_max: 47 MPa at the first node outside the contact at h = 0.1 mm), so that RMS error is reported
+// beside it without a target: at h = 0.2 mm with CPDI it read 7.6 % while the nodal readout of the
+// exact ellipse was matched to 0.24 %.
 #include "fragmpm/pipeline/verify_hertz.hpp"
 
 #include <algorithm>
@@ -162,22 +168,31 @@ HertzLevel run_hertz_level(double cell_size) {
   const double b = oracle.half_width(), p_max = oracle.peak_pressure();
   const long long last = std::max(static_cast<long long>(std::ceil(b / cell_size)),
                                   static_cast<long long>(std::floor(reach / cell_size)) + 1);
-  double square_sum = 0.0;
-  long long count = 0;
+  double square_sum = 0.0, point_square_sum = 0.0;
+  long long count = 0, point_count = 0;
   for (long long i = -last; i <= last; ++i) {
     HertzProfilePoint point;
     point.x = static_cast<double>(i) * cell_size;
     const auto it = nodal.find(i);
     point.pressure = (it == nodal.end() ? 0.0 : it->second) / cell_size;
     point.analytic = oracle.pressure(point.x);
+    point.analytic_nodal = oracle.nodal_pressure(point.x, cell_size);
     level.peak_pressure = std::max(level.peak_pressure, point.pressure);
     level.profile.push_back(point);
-    if (std::abs(point.x) < b || point.pressure > 0.0) {
-      square_sum += (point.pressure - point.analytic) * (point.pressure - point.analytic);
+    if (point.analytic_nodal > 0.0 || point.pressure > 0.0) {
+      square_sum +=
+          (point.pressure - point.analytic_nodal) * (point.pressure - point.analytic_nodal);
       ++count;
+    }
+    if (std::abs(point.x) < b || point.pressure > 0.0) {
+      point_square_sum += (point.pressure - point.analytic) * (point.pressure - point.analytic);
+      ++point_count;
     }
   }
   level.rms_error = count > 0 ? std::sqrt(square_sum / static_cast<double>(count)) / p_max : 1.0;
+  level.rms_point_error =
+      point_count > 0 ? std::sqrt(point_square_sum / static_cast<double>(point_count)) / p_max
+                      : 1.0;
   return level;
 }
 
@@ -213,7 +228,7 @@ std::vector<VerifyRow> verify_hertz(const VerifyOptions& options) {
     rows.push_back(width);
 
     VerifyRow rms = base;
-    rms.metric = "rms_pressure_error/p_max (absolute)";
+    rms.metric = "rms_nodal_pressure_error/p_max (absolute)";
     rms.value = level.rms_error;
     rms.reference = 0.0;
     rms.error = level.rms_error;
@@ -222,6 +237,13 @@ std::vector<VerifyRow> verify_hertz(const VerifyOptions& options) {
       rms.target_high = finest_rms_target;
     }
     rows.push_back(rms);
+
+    VerifyRow point_rms = base;
+    point_rms.metric = "rms_point_pressure_error/p_max (absolute; against p(x_i))";
+    point_rms.value = level.rms_point_error;
+    point_rms.reference = 0.0;
+    point_rms.error = level.rms_point_error;
+    rows.push_back(point_rms);
 
     VerifyRow peak = base;
     peak.metric = "peak_nodal_pressure_Pa (reference: p_max)";
