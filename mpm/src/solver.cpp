@@ -47,6 +47,7 @@ struct Solver<D>::Impl {
     const Problem<D>& problem = s.problem;
     for (const auto& m : problem.materials) {
       s.models.push_back({m.bulk_modulus, m.shear_modulus});
+      s.elastic_laws.push_back(elastic_law(m));
       const bool phase_field = std::holds_alternative<PhaseField>(m.damage);
       s.material_damages.push_back(phase_field ? material_phase_field : (m.damages() ? 1 : 0));
       s.plan.phase_field = s.plan.phase_field || phase_field;

@@ -6,20 +6,26 @@
 
 #include "fragmpm/mpm/solver.hpp"
 #include "fragmpm/mpm/thermal.hpp"
+#include "fragmpm/mpm/wave_speed.hpp"
 
 namespace fragmpm::mpm {
 
 template <int D>
 double stable_time_step(const Problem<D>& problem, const Particles<D>& particles, double cfl) {
   std::vector<NeoHookean> models;
-  for (const auto& m : problem.materials) models.push_back({m.bulk_modulus, m.shear_modulus});
+  std::vector<ElasticLaw> laws;
+  for (const auto& m : problem.materials) {
+    models.push_back({m.bulk_modulus, m.shear_modulus});
+    laws.push_back(elastic_law(m));
+  }
   double max_speed = 0.0;
   const std::int64_t n = static_cast<std::int64_t>(particles.size());
 #pragma omp parallel for reduction(max : max_speed) schedule(static)
   for (std::int64_t p = 0; p < n; ++p) {
-    const double J = particles.F[p].determinant();
-    const double density = particles.mass[p] / (particles.volume0[p] * J);
-    const double c = models[particles.material[p]].wave_speed(density);
+    const std::size_t material = static_cast<std::size_t>(particles.material[p]);
+    const double c =
+        longitudinal_wave_speed<D>(models[material], laws[material], particles.F[p],
+                                   particles.stress[p], particles.mass[p] / particles.volume0[p]);
     max_speed = std::max(max_speed, c + particles.v[p].norm());
   }
   // The explicit conduction limit joins the CFL limit when the thermal module runs

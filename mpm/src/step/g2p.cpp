@@ -125,9 +125,11 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
       if (loaded) load_work += state.load_force[p].dot(displacement);
       if (penalty) penalty_work += state.penalty_force[p].dot(displacement);
       momentum += P.mass[p] * P.v[p];
-      const double density = P.mass[p] / (P.volume0[p] * J);
-      max_speed =
-          std::max(max_speed, state.models[P.material[p]].wave_speed(density) + P.v[p].norm());
+      const std::size_t material = static_cast<std::size_t>(P.material[p]);
+      const double wave_speed =
+          longitudinal_wave_speed<D>(state.models[material], state.elastic_laws[material], P.F[p],
+                                     P.stress[p], P.mass[p] / P.volume0[p]);
+      max_speed = std::max(max_speed, wave_speed + P.v[p].norm());
     }
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
     for (int k = 0; k < D; ++k) state.momentum_parts[t * per_thread + k] = momentum[k];

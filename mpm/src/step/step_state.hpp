@@ -14,6 +14,7 @@
 #include "fragmpm/mpm/problem.hpp"
 #include "fragmpm/mpm/series.hpp"
 #include "fragmpm/mpm/shape_functions.hpp"
+#include "fragmpm/mpm/wave_speed.hpp"
 #include "step/phase_field_state.hpp"
 #include "step/thermal_state.hpp"
 
@@ -108,6 +109,7 @@ struct StepState {
   Problem<D> problem;
   StepPlan plan;
   std::vector<NeoHookean> models;
+  std::vector<ElasticLaw> elastic_laws;  ///< per material, for the wave speed of the step limit
   /// Per material: 0 no damage, 1 a damage law of damage_law.hpp, material_phase_field (2) the
   /// phase field. The constitutive update reads this one byte per particle to pick its branch.
   std::vector<char> material_damages;
