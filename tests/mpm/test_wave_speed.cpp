@@ -84,6 +84,26 @@ TEST(WaveSpeed, HenckyTangentDoesNotChangeWithVolume) {
               1.0 / std::sqrt(22.0), 1e-12);
 }
 
+TEST(WaveSpeed, AFailedParticleKeepsOnlyTheShearItsSplitKeeps) {
+  // Stretched eightfold: the intact neo-Hookean tangent is dominated by G J^(-2/3) (2/3) λ²; a
+  // failed particle of the volumetric-deviatoric split keeps no shear energy, so only K remains,
+  // while the tensile spectral split keeps its compressive principal stresses and the whole
+  // tangent.
+  const Mat<2> F = Vec<2>(8.0, 0.9).asDiagonal();
+  const double intact = tangent_from_speed<2>(ElasticLaw::neo_hookean, F);
+  EXPECT_NEAR(intact / small_strain_modulus, 5.01, 0.01);  // 1,281 GPa against 255.8 GPa
+  auto failed = [&](Degradation degradation) {
+    const double c =
+        longitudinal_wave_speed<2>(moduli, ElasticLaw::neo_hookean, F, Mat<2>::Zero(),
+                                   reference_density, kept_shear_fraction(degradation, 1.0));
+    return reference_density * c * c;
+  };
+  EXPECT_NEAR(failed(Degradation::volumetric_deviatoric), moduli.bulk_modulus,
+              1e-9 * moduli.bulk_modulus);
+  EXPECT_NEAR(failed(Degradation::tensile_spectral), intact, 1e-9 * intact);
+  EXPECT_DOUBLE_EQ(kept_shear_fraction(Degradation::isotropic, 0.25), 0.75);
+}
+
 TEST(WaveSpeed, CompressionAddsItsInitialStress) {
   // A particle at J = 0.9 under a 5 GPa pressure: c² = (K + 4G/3 + J ‖σ‖) / ρ₀.
   const Mat<2> F = Vec<2>(0.9, 1.0).asDiagonal();

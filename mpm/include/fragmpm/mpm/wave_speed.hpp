@@ -40,6 +40,16 @@ inline ElasticLaw elastic_law(const MaterialSpec& material) {
              : ElasticLaw::neo_hookean;
 }
 
+/// The share of the neo-Hookean's shear tangent a particle with damage d keeps: the
+/// volumetric-deviatoric split and the isotropic degradation scale the whole deviatoric energy by
+/// (1 − d); the tensile spectral split keeps the compressive principal stresses, which the shear
+/// term stiffens, so it keeps the whole tangent.
+inline double kept_shear_fraction(Degradation degradation, double damage) {
+  const bool scales_deviator =
+      degradation == Degradation::volumetric_deviatoric || degradation == Degradation::isotropic;
+  return scales_deviator ? std::clamp(1.0 - damage, 0.0, 1.0) : 1.0;
+}
+
 /// Largest eigenvalue of b = F Fᵀ over the directions a wave can travel (in plane in 2D).
 template <int D>
 double largest_squared_stretch(const Mat<D>& F) {
@@ -57,15 +67,18 @@ double largest_squared_stretch(const Mat<D>& F) {
 
 /// Upper bound of the longitudinal wave speed [m/s] of a particle with deformation F, Cauchy
 /// stress σ (as stored, degraded and with any thermal part) and reference density ρ₀ = m / V₀.
+/// `shear_fraction` (kept_shear_fraction) scales the neo-Hookean's shear tangent; the bulk
+/// modulus is always counted.
 template <int D>
 double longitudinal_wave_speed(const NeoHookean& moduli, ElasticLaw law, const Mat<D>& F,
-                               const Mat<D>& cauchy_stress, double reference_density) {
+                               const Mat<D>& cauchy_stress, double reference_density,
+                               double shear_fraction = 1.0) {
   const double J = F.determinant();
   double tangent = moduli.bulk_modulus + 4.0 * moduli.shear_modulus / 3.0;
   if (law == ElasticLaw::neo_hookean) {
     const double trace_b = NeoHookean::trace_b<D>(F);
     tangent = moduli.bulk_modulus +
-              moduli.shear_modulus * std::pow(J, -2.0 / 3.0) *
+              shear_fraction * moduli.shear_modulus * std::pow(J, -2.0 / 3.0) *
                   ((2.0 / 3.0) * largest_squared_stretch<D>(F) + (2.0 / 9.0) * trace_b);
   }
   const double initial_stress = J * cauchy_stress.norm();
