@@ -23,10 +23,9 @@ double stable_time_step(const Problem<D>& problem, const Particles<D>& particles
 #pragma omp parallel for reduction(max : max_speed) schedule(static)
   for (std::int64_t p = 0; p < n; ++p) {
     const std::size_t material = static_cast<std::size_t>(particles.material[p]);
-    const double c = longitudinal_wave_speed<D>(
-        models[material], laws[material], particles.F[p], particles.stress[p],
-        particles.mass[p] / particles.volume0[p],
-        kept_shear_fraction(problem.materials[material].degradation, particles.damage[p]));
+    const double c = particle_wave_speed<D>(models[material], laws[material],
+                                            problem.materials[material].degradation, particles,
+                                            static_cast<std::size_t>(p));
     max_speed = std::max(max_speed, c + particles.v[p].norm());
   }
   // The explicit conduction limit joins the CFL limit when the thermal module runs

@@ -126,10 +126,9 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
       if (penalty) penalty_work += state.penalty_force[p].dot(displacement);
       momentum += P.mass[p] * P.v[p];
       const std::size_t material = static_cast<std::size_t>(P.material[p]);
-      const double wave_speed = longitudinal_wave_speed<D>(
-          state.models[material], state.elastic_laws[material], P.F[p], P.stress[p],
-          P.mass[p] / P.volume0[p],
-          kept_shear_fraction(state.problem.materials[material].degradation, P.damage[p]));
+      const double wave_speed = particle_wave_speed<D>(
+          state.models[material], state.elastic_laws[material],
+          state.problem.materials[material].degradation, P, static_cast<std::size_t>(p));
       max_speed = std::max(max_speed, wave_speed + P.v[p].norm());
     }
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());

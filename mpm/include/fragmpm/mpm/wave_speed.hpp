@@ -23,6 +23,7 @@
 #include <cmath>
 
 #include "fragmpm/mpm/neo_hookean.hpp"
+#include "fragmpm/mpm/particles.hpp"
 #include "fragmpm/mpm/problem.hpp"
 
 namespace fragmpm::mpm {
@@ -83,6 +84,16 @@ double longitudinal_wave_speed(const NeoHookean& moduli, ElasticLaw law, const M
   }
   const double initial_stress = J * cauchy_stress.norm();
   return std::sqrt((tangent + initial_stress) / reference_density);
+}
+
+/// The wave speed of particle p of a material with these moduli, law and degradation, from its
+/// stored state (the step limit's one call, at the start and after every step).
+template <int D>
+double particle_wave_speed(const NeoHookean& moduli, ElasticLaw law, Degradation degradation,
+                           const Particles<D>& particles, std::size_t p) {
+  return longitudinal_wave_speed<D>(moduli, law, particles.F[p], particles.stress[p],
+                                    particles.mass[p] / particles.volume0[p],
+                                    kept_shear_fraction(degradation, particles.damage[p]));
 }
 
 }  // namespace fragmpm::mpm
