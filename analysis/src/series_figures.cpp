@@ -96,17 +96,24 @@ PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
   const std::pair<const char*, const char*> columns[] = {{"kinetic", "kinetic"},
                                                          {"strain", "strain"},
                                                          {"dissipated", "dissipated (damage)"},
+                                                         {"flow_dissipation", "crushed flow"},
                                                          {"friction_work", "friction work"},
                                                          {"contact_dissipation", "contact loss"},
                                                          {"transfer_dissipation", "transfer loss"},
                                                          {"wall_work", "wall work"},
                                                          {"balance_error", "balance error"}};
   for (const auto& [name, label] : columns) {
-    // Run files written before the contact and transfer losses were booked have no such series.
-    if ((std::string_view(name) == "contact_dissipation" ||
-         std::string_view(name) == "transfer_dissipation") &&
+    // Run files written before these losses were booked have no such series; a run whose failed
+    // material never flowed draws no flat zero line.
+    const std::string_view column = name;
+    if ((column == "contact_dissipation" || column == "transfer_dissipation" ||
+         column == "flow_dissipation") &&
         !run.has(name))
       continue;
+    if (column == "flow_dissipation") {
+      const std::vector<double>& flow = run.column(name);
+      if (std::all_of(flow.begin(), flow.end(), [](double e) { return e == 0.0; })) continue;
+    }
     LineSeries s;
     s.label = label;
     s.x = time;

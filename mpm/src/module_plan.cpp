@@ -1,5 +1,6 @@
 // Which modules a scene's step runs, and why: fixed once at setup from the scene and logged by
 // `fragmpm run` (and written to /meta), so a reader of a run knows what physics it contains.
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -63,6 +64,17 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
     for (const auto& name : damaging) damage_reason += " '" + name + "'";
   }
   plan.push_back({"damage", !damaging.empty(), damage_reason});
+  std::string flowing;
+  for (const auto& m : problem.materials)
+    if (m.crushed_friction_angle > 0.0) {
+      char angle[32];
+      std::snprintf(angle, sizeof angle, "%.1f deg", m.crushed_friction_angle * 180.0 / M_PI);
+      flowing += (flowing.empty() ? "" : ", ") + m.name + " (" + angle + ")";
+    }
+  plan.push_back({"crushed flow", !flowing.empty(),
+                  flowing.empty()
+                      ? "no crushed_friction_angle: failed material keeps its compressive energy"
+                      : "failed particles flow as a cohesionless Mohr-Coulomb solid: " + flowing});
   std::string phase_field_reason;
   for (const auto& m : problem.materials)
     if (const auto* law = std::get_if<PhaseField>(&m.damage)) {

@@ -64,6 +64,8 @@ const std::vector<ScalarColumn<D>>& scalar_columns() {
       {"thermal", "thermal energy", true, "", [](const R& r) { return r.thermal; }},
       {"dissipated", "dissipated by damage (cumulative)", true, "",
        [](const R& r) { return r.totals.dissipated; }},
+      {"flow_dissipation", "dissipated by the frictional flow of failed material (cumulative)",
+       true, "", [](const R& r) { return r.totals.flow_dissipation; }, true},
       {"friction_work", "dissipated by friction (cumulative)", true, "",
        [](const R& r) { return r.totals.friction_work; }},
       {"contact_dissipation",
@@ -418,6 +420,7 @@ const std::vector<std::pair<const char*, double EnergyAccumulators::*>>& accumul
       {"load_work", &EnergyAccumulators::load_work},
       {"friction_work", &EnergyAccumulators::friction_work},
       {"dissipated", &EnergyAccumulators::dissipated},
+      {"flow_dissipation", &EnergyAccumulators::flow_dissipation},
       {"contact_dissipation", &EnergyAccumulators::contact_dissipation},
       {"transfer_dissipation", &EnergyAccumulators::transfer_dissipation},
       {"initial_energy", &EnergyAccumulators::initial_energy},
@@ -464,6 +467,10 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
   g.write("material", p.material, {n});
   g.write("strength", p.strength, {n});
   g.write("id", particle_ids(p), {n});
+  if (!p.plastic_inverse.empty())
+    g.write("plastic_inverse", pack<D>(p.plastic_inverse), {n, d, d});
+  else if (g.exists("plastic_inverse"))
+    g.remove("plastic_inverse");
   if (!p.temperature.empty())
     g.write("temperature", p.temperature, {n});
   else if (g.exists("temperature"))
@@ -520,6 +527,10 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
   p.material = read_shaped<std::int32_t>(g, "material", {n});
   p.strength = read_shaped<double>(g, "strength", {n});
   if (!p.temperature.empty()) p.temperature = read_shaped<double>(g, "temperature", {n});
+  if (g.exists("plastic_inverse")) {
+    p.plastic_inverse.resize(n);
+    unpack<D>(read_shaped<double>(g, "plastic_inverse", {n, d, d}), p.plastic_inverse);
+  }
   if (g.exists("id")) p.id = read_shaped<std::int32_t>(g, "id", {n});
   return c;
 }

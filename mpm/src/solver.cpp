@@ -33,6 +33,20 @@ void settle_affine(Problem<D>& problem) {
   if (P.affine.size() != P.size() || problem.time.transfer == Transfer::flip)
     P.affine.assign(P.size(), Mat<D>::Zero());
 }
+
+/// F_p⁻¹ exists exactly when a material's failed particles can flow (crushed_flow.hpp): the
+/// identity for a new run, the checkpoint's on a restart.
+template <int D>
+void settle_plastic_deformation(Problem<D>& problem) {
+  auto& P = problem.particles;
+  const bool flows =
+      std::any_of(problem.materials.begin(), problem.materials.end(),
+                  [](const MaterialSpec& m) { return m.crushed_friction_angle > 0.0; });
+  if (!flows)
+    P.plastic_inverse.clear();
+  else if (P.plastic_inverse.size() != P.size())
+    P.plastic_inverse.assign(P.size(), Mat<D>::Identity());
+}
 }  // namespace
 
 template <int D>
@@ -44,6 +58,7 @@ struct Solver<D>::Impl {
     StepState<D>& s = state;
     s.problem = std::move(p);
     settle_affine(s.problem);
+    settle_plastic_deformation(s.problem);
     const Problem<D>& problem = s.problem;
     for (const auto& m : problem.materials) {
       s.models.push_back({m.bulk_modulus, m.shear_modulus});
@@ -55,6 +70,13 @@ struct Solver<D>::Impl {
       s.material_nonlocal.push_back(rankine && rankine->nonlocal ? 1 : 0);
       s.nonlocal_damage = s.nonlocal_damage || s.material_nonlocal.back();
       if (m.damages()) s.plan.damage = true;
+      if (m.crushed_friction_angle > 0.0 &&
+          (m.degradation != Degradation::hencky_spectral || phase_field || !m.damages()))
+        throw std::invalid_argument("material '" + m.name +
+                                    "': crushed_friction_angle needs a damage law with "
+                                    "degradation = \"hencky-spectral\"");
+      s.crushed_sine.push_back(m.crushed_friction_angle > 0.0 ? std::sin(m.crushed_friction_angle)
+                                                              : 0.0);
       s.departure_speed_limit = std::max(
           s.departure_speed_limit, departure_speed_factor * s.models.back().wave_speed(m.density));
     }
@@ -286,8 +308,8 @@ struct Solver<D>::Impl {
     row.totals = s.totals;
     row.balance_error =
         (row.kinetic + row.strain + s.totals.fracture_energy + s.totals.dissipated +
-         s.totals.friction_work + s.totals.contact_dissipation + s.totals.transfer_dissipation +
-         s.totals.lost.kinetic + s.totals.lost.strain) -
+         s.totals.flow_dissipation + s.totals.friction_work + s.totals.contact_dissipation +
+         s.totals.transfer_dissipation + s.totals.lost.kinetic + s.totals.lost.strain) -
         (s.totals.initial_energy + s.totals.wall_work + s.totals.gravity_work + s.totals.load_work);
     for (std::size_t w = 0; w < s.problem.walls.size(); ++w)
       row.wall_displacement[w] = s.problem.walls[w].velocity.displacement(s.time);

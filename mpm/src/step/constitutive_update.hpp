@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "fragmpm/mpm/crushed_flow.hpp"
 #include "fragmpm/mpm/damage_law.hpp"
 #include "fragmpm/mpm/phase_field.hpp"
 #include "step/step_state.hpp"
@@ -18,7 +19,16 @@ namespace fragmpm::mpm {
 struct ConstitutiveResult {
   double stored = 0.0;      ///< recoverable energy per reference volume [J/m³]
   double dissipated = 0.0;  ///< released by this update's damage increment [J/m³]
+  double flowed = 0.0;      ///< released by the frictional flow of failed material [J/m³]
 };
+
+/// The elastic deformation F_e = F F_p⁻¹ of particle p: F itself unless failed material can flow.
+template <int D>
+inline Mat<D> elastic_deformation(const StepState<D>& state, std::int64_t p) {
+  const auto& P = state.problem.particles;
+  if (P.plastic_inverse.empty()) return P.F[p];
+  return P.F[p] * P.plastic_inverse[p];
+}
 
 /// The trial (undamaged) stress σ̄ of particle p from F and, with the thermal module, θ. The
 /// elastic law is the neo-Hookean, or the Hencky energy of a material degraded by its split.
@@ -29,7 +39,7 @@ inline Mat<D> trial_stress(const StepState<D>& state, std::int64_t p, double& ps
   const int material = P.material[p];
   Mat<D> trial;
   elastic_stress_and_energy<D>(
-      state.models[static_cast<std::size_t>(material)], P.F[p],
+      state.models[static_cast<std::size_t>(material)], elastic_deformation(state, p),
       state.problem.materials[static_cast<std::size_t>(material)].degradation, trial, psi, split);
   if constexpr (Thermal) trial += state.thermal->stress(material, P.F[p], P.temperature[p]);
   return trial;
@@ -69,7 +79,7 @@ inline ConstitutiveResult update_constitutive(
   const NeoHookean& model = state.models[static_cast<std::size_t>(material)];
   double psi;
   TensileSplit<D> split;  // filled only for a Hencky-split material, reused by its degradation
-  const Mat<D> trial = trial_stress<D, Thermal>(state, p, psi, &split);
+  Mat<D> trial = trial_stress<D, Thermal>(state, p, psi, &split);
   if (!law) {
     P.stress[p] = trial;
     return {psi, 0.0};
@@ -90,6 +100,24 @@ inline ConstitutiveResult update_constitutive(
     P.stress[p] = trial;
     return {psi, 0.0};
   }
+  // The damage increment releases ψ⁺ of the trial state; a failed particle's flow then does the
+  // plastic work τ^new : Δε^p (crushed_flow.hpp), and the stress is the returned state's.
+  const double trial_psi = psi, trial_tensile = split.tensile_energy;
+  double flowed = 0.0;
+  if constexpr (AdvanceDamage) {
+    const double sine = state.crushed_sine[static_cast<std::size_t>(material)];
+    if (sine > 0.0 && d >= 1.0) {
+      const Mat<D> elastic_F = elastic_deformation(state, p);
+      const double lambda = model.bulk_modulus - 2.0 * model.shear_modulus / 3.0;
+      const CrushedFlowReturn<D> flow =
+          crushed_flow_return<D>(elastic_F, lambda, model.shear_modulus, sine);
+      if (flow.flowed) {
+        P.plastic_inverse[p] = P.F[p].inverse() * flow.correction * elastic_F;
+        trial = trial_stress<D, Thermal>(state, p, psi, &split);
+        flowed = flow.dissipation;
+      }
+    }
+  }
   const DegradedState<D> degraded =
       spec.degradation == Degradation::hencky_spectral
           ? degrade_hencky<D>(split, trial - split.tensile_stress - split.compressive_stress,
@@ -101,7 +129,8 @@ inline ConstitutiveResult update_constitutive(
   const double degradable = std::clamp(degraded.degradable, 0.0, psi);
   P.stress[p] = degraded.stress;
   if constexpr (Thermal) state.degradable[static_cast<std::size_t>(p)] = degradable;
-  return {psi - d * degradable, (d - damage_before) * degradable};
+  const double released = flowed > 0.0 ? std::clamp(trial_tensile, 0.0, trial_psi) : degradable;
+  return {psi - d * degradable, (d - damage_before) * released, flowed};
 }
 
 }  // namespace fragmpm::mpm

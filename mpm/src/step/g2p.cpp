@@ -52,7 +52,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   const bool penalty = state.penalty_walls;
   const double cell_size = state.grid.cell_size;
   double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0,
-         penalty_work = 0.0, max_speed = 0.0;
+         flowed = 0.0, penalty_work = 0.0, max_speed = 0.0;
   std::int64_t failed = -1;
   const bool nonlocal = state.nonlocal_damage;
   if (nonlocal) size_array(state.local_equivalent, P.size());
@@ -61,7 +61,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   constexpr std::size_t per_thread = D + A;
   size_array(state.momentum_parts, per_thread * static_cast<std::size_t>(slots));
   std::fill(state.momentum_parts.begin(), state.momentum_parts.end(), 0.0);
-#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated, penalty_work) reduction(max : max_speed)
+#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated, flowed, penalty_work) reduction(max : max_speed)
   {
     Stencil<D> s;
     Vec<D> momentum = Vec<D>::Zero();
@@ -111,6 +111,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
         const ConstitutiveResult energy = update_constitutive<D, Thermal, true>(state, p, dt);
         strain += P.volume0[p] * energy.stored;
         dissipated += P.volume0[p] * energy.dissipated;
+        flowed += P.volume0[p] * energy.flowed;
         if constexpr (deform_domain)
           if (P.damage[p] >= 1.0) limit_failed_domain<D>(P.domain[p], cell_size);
       }
@@ -143,6 +144,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
         nonlocal_constitutive_update<D, Thermal>(state, dt, deform_domain);
     strain += sums.stored;
     dissipated += sums.dissipated;
+    flowed += sums.flowed;
   }
   state.row.momentum.setZero();
   state.row.angular_momentum.setZero();
@@ -157,6 +159,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   state.totals.load_work += load_work;
   state.totals.wall_work += penalty_work;  // penalty walls (penalty_walls.cpp)
   state.totals.dissipated += dissipated;
+  state.totals.flow_dissipation += flowed;
   state.next_dt_limit =
       max_speed > 0.0 ? state.problem.time.cfl * cell_size / (std::sqrt(double(D)) * max_speed)
                       : std::numeric_limits<double>::infinity();

@@ -58,8 +58,8 @@ ConstitutiveSums nonlocal_constitutive_update(StepState<D>& state, double dt, bo
   }
 
   const double cell_size = state.grid.cell_size;
-  double stored = 0.0, dissipated = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : stored, dissipated)
+  double stored = 0.0, dissipated = 0.0, flowed = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : stored, dissipated, flowed)
   for (std::int64_t p = 0; p < n; ++p) {
     if (!is_nonlocal[static_cast<std::size_t>(P.material[p])]) continue;
     // A failed particle (NaN average) runs the local update, which leaves d = 1.
@@ -67,9 +67,10 @@ ConstitutiveSums nonlocal_constitutive_update(StepState<D>& state, double dt, bo
         state, p, dt, state.nonlocal_equivalent[static_cast<std::size_t>(p)]);
     stored += P.volume0[p] * energy.stored;
     dissipated += P.volume0[p] * energy.dissipated;
+    flowed += P.volume0[p] * energy.flowed;
     if (limit_domains && P.damage[p] >= 1.0) limit_failed_domain<D>(P.domain[p], cell_size);
   }
-  return {stored, dissipated};
+  return {stored, dissipated, flowed};
 }
 
 #define FRAGMPM_INSTANTIATE(D)                                                                   \

@@ -88,6 +88,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
 struct ConstitutiveSums {
   double stored = 0.0;      ///< Σ V₀ (ψ − d ψ_t)
   double dissipated = 0.0;  ///< Σ V₀ Δd ψ_t
+  double flowed = 0.0;      ///< Σ V₀ of the energy failed material's flow released
 };
 
 /// The constitutive update of the particles of nonlocal Rankine materials, after G2P has stored

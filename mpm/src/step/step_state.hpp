@@ -116,6 +116,9 @@ struct StepState {
   /// Per material: the Rankine law runs on the nonlocal σ̄₁ (RankineSoftening::nonlocal).
   std::vector<char> material_nonlocal;
   bool nonlocal_damage = false;  ///< some material is nonlocal: G2P defers its constitutive update
+  /// Per material: sin φ of the friction angle its failed particles flow at (crushed_flow.hpp), 0
+  /// when they keep ψ⁻ without a bound. Any nonzero entry makes Particles::plastic_inverse exist.
+  std::vector<double> crushed_sine;
   /// Nonlocal materials only: the trial largest principal stress σ₁ of each particle, then its
   /// kernel average σ̄₁ [Pa] (nonlocal_damage.cpp).
   std::vector<double> local_equivalent, nonlocal_equivalent;

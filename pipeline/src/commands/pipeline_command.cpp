@@ -178,10 +178,11 @@ std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& p
   s << fmt::format(
       "energy:     input {:.4g} J/m (initial {:.4g} + wall work {:.4g}); kinetic {:.4g}, strain "
       "{:.4g}, "
-      "damage dissipation {:.4g}, crack energy {:.4g}, friction {:.4g}, contact {:.4g}, "
-      "transfer {:.4g} [J/m]\n",
+      "damage dissipation {:.4g}, crushed flow {:.4g}, crack energy {:.4g}, friction {:.4g}, "
+      "contact {:.4g}, transfer {:.4g} [J/m]\n",
       input, t.initial_energy, t.wall_work, r.last.kinetic, r.last.strain, t.dissipated,
-      t.fracture_energy, t.friction_work, t.contact_dissipation, t.transfer_dissipation);
+      t.flow_dissipation, t.fracture_energy, t.friction_work, t.contact_dissipation,
+      t.transfer_dissipation);
   s << fmt::format("balance:    error {:.4g} J/m = {:.3g} % of input\n", r.last.balance_error,
                    input > 0 ? 100.0 * std::abs(r.last.balance_error) / input : 0.0);
   if (!r.end_state.empty()) s << fmt::format("end state:  {}\n", r.end_state);
@@ -261,10 +262,11 @@ Report pipeline_report(const PipelineOptions& o, const std::vector<Preview>& pre
   report.checks.push_back(
       {"energy balance",
        fmt::format("error {:.4g} J/m = {:.3g} % of the input {:.4g} J/m (limit 2 %); booked: "
-                   "damage {:.4g}, friction {:.4g}, contact {:.4g}, transfer {:.4g}, departed "
-                   "{:.4g} J/m",
-                   r.last.balance_error, 100.0 * share, input, t.dissipated, t.friction_work,
-                   t.contact_dissipation, t.transfer_dissipation, t.lost.kinetic + t.lost.strain),
+                   "damage {:.4g}, crushed flow {:.4g}, friction {:.4g}, contact {:.4g}, transfer "
+                   "{:.4g}, departed {:.4g} J/m",
+                   r.last.balance_error, 100.0 * share, input, t.dissipated, t.flow_dissipation,
+                   t.friction_work, t.contact_dissipation, t.transfer_dissipation,
+                   t.lost.kinetic + t.lost.strain),
        share > 0.02});
   if (r.has_extremes) {
     report.checks.push_back(

@@ -107,7 +107,8 @@ const std::vector<std::string_view>& damage_keys() {
                                                      "averaging",
                                                      "length_scale",
                                                      "residual_stiffness",
-                                                     "anisotropy"};
+                                                     "anisotropy",
+                                                     "crushed_friction_angle"};
   return keys;
 }
 
@@ -116,8 +117,8 @@ namespace {
 /// The keys of damage = "phase-field" ([KT19] §2.1): l₀, G_c and k_f. The other laws' keys are
 /// refused, since nothing would read them.
 mpm::PhaseField read_phase_field(const Section& m, const mpm::GridSpec<2>& grid) {
-  for (std::string_view k :
-       {"strength", "weibull", "crack_speed", "characteristic_length", "averaging", "degradation"})
+  for (std::string_view k : {"strength", "weibull", "crack_speed", "characteristic_length",
+                             "averaging", "degradation", "crushed_friction_angle"})
     if (m.has(k))
       m.fail(k, "expected " + std::string(k) +
                     " only with damage = \"rankine\" or \"time-to-failure\", got it with "
@@ -243,6 +244,19 @@ void read_damage(const Section& m, mpm::MaterialSpec& spec, std::optional<double
     m.expected("degradation",
                "one of \"tensile\" (spectral, [HH17] eq. (26)-(27)), \"isotropic\" ([XLS21] eq. "
                "(7)), \"volumetric-deviatoric\" ([AMM09]), \"hencky-spectral\" ([KT19] eq. (14))");
+  if (m.has("crushed_friction_angle")) {
+    if (spec.degradation != mpm::Degradation::hencky_spectral)
+      m.fail("crushed_friction_angle",
+             "expected crushed_friction_angle only with degradation = \"hencky-spectral\" (the "
+             "flow of failed material is returned in its principal logarithmic strains), got "
+             "degradation = \"" +
+                 degradation + "\"");
+    spec.crushed_friction_angle = m.quantity("crushed_friction_angle", QK::angle);
+    if (!(spec.crushed_friction_angle > 0.0 && spec.crushed_friction_angle < 0.5 * M_PI))
+      m.expected("crushed_friction_angle",
+                 "a friction angle between 0 and 90 deg (e.g. \"30 deg\"), the Mohr-Coulomb "
+                 "angle of the failed material");
+  }
 
   if (law == "rankine") {
     if (m.has("crack_speed"))

@@ -45,6 +45,9 @@ struct Particles {
   std::vector<std::int32_t> material;  ///< index into the problem's material list
   std::vector<double> strength;        ///< σ_f per particle [Pa]
   std::vector<double> temperature;     ///< θ [K]; empty unless the thermal module runs
+  /// F_p⁻¹, the inverse plastic deformation of failed material that flowed (crushed_flow.hpp):
+  /// the elastic deformation is F F_p⁻¹. Empty unless a material has crushed_friction_angle.
+  std::vector<Mat<D>> plastic_inverse;
   /// The particle's index at step 0. Equal to the index until particles are removed
   /// (`[grid] outside = "remove"`); then frames hold fewer particles, and the id finds each one's
   /// reference configuration in the first frame.
@@ -71,6 +74,7 @@ struct Particles {
     material.resize(n, 0);
     strength.resize(n, 0.0);
     temperature.resize(thermal ? n : 0, 0.0);
+    if (!plastic_inverse.empty()) plastic_inverse.resize(n, Mat<D>::Identity());
     id.resize(n);
     for (std::size_t p = old; p < n; ++p) id[p] = static_cast<std::int32_t>(p);
   }
@@ -98,6 +102,7 @@ struct Particles {
     gather(material, out.material);
     gather(strength, out.strength);
     gather(temperature, out.temperature);
+    gather(plastic_inverse, out.plastic_inverse);
     gather(id, out.id);
     return out;
   }
@@ -121,6 +126,7 @@ struct Particles {
     compact(material);
     compact(strength);
     compact(temperature);
+    compact(plastic_inverse);
     compact(id);
   }
 };

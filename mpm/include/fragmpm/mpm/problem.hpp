@@ -36,6 +36,9 @@ struct MaterialSpec {
   /// l_ch of the damage law [m]; 0 = the particle size V₀^(1/D) (the width of a one-particle crack
   /// band). The papers list l_ch as an input ([HH17] Tables II-III: 1.414 mm at h = 1 mm).
   double characteristic_length = 0.0;
+  /// φ [rad] of failed particles (d = 1) as a cohesionless frictional solid
+  /// (crushed_flow.hpp); 0 keeps the failed material's ψ⁻ without a bound. Hencky spectral only.
+  double crushed_friction_angle = 0.0;
 
   bool damages() const { return !std::holds_alternative<NoDamage>(damage); }
 };

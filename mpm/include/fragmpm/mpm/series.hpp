@@ -26,6 +26,8 @@ struct EnergyAccumulators {
   double load_work = 0.0;      ///< work done by traction loads [J]
   double friction_work = 0.0;  ///< dissipated by friction at walls and contacts [J]
   double dissipated = 0.0;     ///< dissipated by damage [J]
+  /// Dissipated by the frictional flow of failed material (crushed_flow.hpp) [J].
+  double flow_dissipation = 0.0;
   /// What grid contact and walls take out as perfectly plastic collisions, beyond the friction
   /// work (step/contact_energy.cpp) [J].
   double contact_dissipation = 0.0;
@@ -47,7 +49,8 @@ struct SeriesRow {
   double time = 0.0, dt = 0.0;
   double kinetic = 0.0, strain = 0.0, thermal = 0.0;
   EnergyAccumulators totals;
-  /// (kinetic + strain + fracture_energy + dissipated + friction_work + contact_dissipation +
+  /// (kinetic + strain + fracture_energy + dissipated + flow_dissipation + friction_work +
+  /// contact_dissipation +
   /// transfer_dissipation + lost kinetic + lost strain) − (initial + wall_work + gravity_work +
   /// load_work): zero for an
   /// exact conservative scheme. What remains is the explicit step's own energy error (large at
