@@ -1,8 +1,10 @@
 // The frictional return of failed material (crushed_flow.hpp).
 //
-// Why the released energy is never negative: along the return ε_i(s) = m + s e_i with Σ e_i = 0
-// (in 2D over the in-plane strains), tr ε is fixed, so d/ds ψ⁻ = 2μ Σ ⟨ε_i(s)⟩₋ e_i (the pressure
-// term drops), and ψ⁻(1) − ψ⁻(s) ≥ 0 for s ≤ 1 when that sum is never negative. The sum
+// Why neither the plastic work nor the released energy is negative: along the return
+// ε_i(s) = m + s e_i with Σ e_i = 0 (in 2D over the in-plane strains), tr ε is fixed, and with
+// τ_i = λ ⟨tr ε⟩₋ + 2μ ⟨ε_i⟩₋ the plastic work is Σ τ_i(s) (1 − s) e_i = 2μ (1 − s) Σ ⟨ε_i(s)⟩₋ e_i
+// (the pressure term drops), while d/ds ψ⁻ = 2μ Σ ⟨ε_i(s)⟩₋ e_i, so ψ⁻(1) − ψ⁻(s) ≥ 0 for s ≤ 1
+// too when that sum is never negative. The sum
 // Σ_{ε_i < 0} e_i (m + s e_i) is never negative: for m ≥ 0 a negative ε_i needs e_i < 0, a product
 // of two negatives; for m < 0 the full sum is s Σ e_i² ≥ 0 and the excluded terms (ε_i ≥ 0 needs
 // e_i > 0) are e_i ε_i ≥ 0, so the restricted sum is s Σ_{ε_i<0} e_i² − m Σ_{ε_i ≥ 0} e_i ≥ 0.
@@ -73,9 +75,14 @@ CrushedFlowReturn<D> crushed_flow_return(const Mat<D>& elastic_F, double lambda,
   }
   result.deviator_scale = admissible;
   result.flowed = true;
-  result.dissipation =
-      compressive_energy<D>(log_strains, lambda, shear_modulus) -
-      compressive_energy<D>((deviator * admissible).array() + mean, lambda, shear_modulus);
+  const Vec<D> returned = (deviator * admissible).array() + mean;
+  result.released = compressive_energy<D>(log_strains, lambda, shear_modulus) -
+                    compressive_energy<D>(returned, lambda, shear_modulus);
+  const double volumetric = negative_part(returned.sum());
+  for (int i = 0; i < D; ++i) {
+    const double tau = lambda * volumetric + 2.0 * shear_modulus * negative_part(returned[i]);
+    result.plastic_work += tau * (1.0 - admissible) * deviator[i];
+  }
   // ε_i^new − ε_i = (s − 1) e_i along each principal direction n_i of b_e.
   const Vec<D> stretch_factors = ((admissible - 1.0) * deviator).array().exp().matrix();
   result.correction =

@@ -186,6 +186,9 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   c.particles.x[3](1) = -0.0;
   c.particles.v[4](0) = 4.9e-324;
   c.particles.stress[5](0, 1) = std::nextafter(1.0, 2.0);
+  // F_p⁻¹ of failed material that flowed: present only when a material can flow.
+  c.particles.plastic_inverse.assign(c.particles.size(), Mat<2>::Identity());
+  c.particles.plastic_inverse[7] << 1.0 / 3.0, 0.25, -1e-300, 3.0;
   run.write_checkpoint(c);
   // A second checkpoint of the same size is written in place: the file does not grow.
   c.particles.x[0](0) += 1.0;
@@ -211,6 +214,8 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   EXPECT_TRUE(same_bits_eigen(q.F, p.F));
   EXPECT_TRUE(same_bits_eigen(q.domain, p.domain));
   EXPECT_TRUE(same_bits_eigen(q.stress, p.stress));
+  ASSERT_EQ(q.plastic_inverse.size(), p.plastic_inverse.size());
+  EXPECT_TRUE(same_bits_eigen(q.plastic_inverse, p.plastic_inverse));
   EXPECT_TRUE(same_bits(q.volume0, p.volume0));
   EXPECT_TRUE(same_bits(q.mass, p.mass));
   EXPECT_TRUE(same_bits(q.damage, p.damage));

@@ -149,6 +149,20 @@ TEST(SceneFracture, EnergySplitsByName) {
   }
 }
 
+TEST(SceneFracture, CrushedFrictionAngleInDegrees) {
+  const mpm::Problem<2> p = fp::parse_scene(
+      with_material_keys("damage = \"time-to-failure\"\nstrength = \"30 MPa\"\ncrack_speed = "
+                         "\"1.5 km/s\"\ndegradation = \"hencky-spectral\"\n"
+                         "crushed_friction_angle = \"30 deg\""),
+      "crushed.toml");
+  EXPECT_NEAR(p.materials[0].crushed_friction_angle, M_PI / 6.0, 1e-15);
+  const mpm::Problem<2> off = fp::parse_scene(
+      with_material_keys("damage = \"time-to-failure\"\nstrength = \"30 MPa\"\ncrack_speed = "
+                         "\"1.5 km/s\"\ndegradation = \"hencky-spectral\""),
+      "uncrushed.toml");
+  EXPECT_EQ(off.materials[0].crushed_friction_angle, 0.0);  // the default: no bound
+}
+
 TEST(SceneFracture, TimeToFailureIsotropicAndNoDamage) {
   const std::string text = with_material_keys(
       "damage = \"time-to-failure\"\nstrength = \"30 MPa\"\ncrack_speed = \"1.5 "
@@ -766,6 +780,16 @@ std::vector<BadFractureScene> bad_scenes() {
        replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\naveraging = \"nonlocal\""),
        "fracture_energy", "materials[0].fracture_energy",
        "the largest admissible cell size is 0.000273"},
+      {"crushed_flow_without_hencky",
+       replace(kScene, "damage = \"rankine\"",
+               "damage = \"rankine\"\ncrushed_friction_angle = \"30 deg\""),
+       "crushed_friction_angle", "materials[0].crushed_friction_angle",
+       "only with degradation = \"hencky-spectral\""},
+      {"crushed_friction_angle_too_steep",
+       replace(kScene, "damage = \"rankine\"",
+               "damage = \"rankine\"\ndegradation = \"hencky-spectral\"\n"
+               "crushed_friction_angle = \"95 deg\""),
+       "crushed_friction_angle", "materials[0].crushed_friction_angle", "between 0 and 90 deg"},
       {"unknown_degradation",
        replace(kScene, "damage = \"rankine\"", "damage = \"rankine\"\ndegradation = \"spectral\""),
        "degradation", "materials[0].degradation", "one of \"tensile\""},

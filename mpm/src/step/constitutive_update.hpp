@@ -100,8 +100,8 @@ inline ConstitutiveResult update_constitutive(
     P.stress[p] = trial;
     return {psi, 0.0};
   }
-  // The damage increment releases ψ⁺ of the trial state; a failed particle's flow then does the
-  // plastic work τ^new : Δε^p (crushed_flow.hpp), and the stress is the returned state's.
+  // The damage increment releases ψ⁺ of the trial state; a failed particle's flow then dissipates
+  // what crushed_flow.hpp derives, and the stress is the returned state's.
   const double trial_psi = psi, trial_tensile = split.tensile_energy;
   double flowed = 0.0;
   if constexpr (AdvanceDamage) {
@@ -113,8 +113,18 @@ inline ConstitutiveResult update_constitutive(
           crushed_flow_return<D>(elastic_F, lambda, model.shear_modulus, sine);
       if (flow.flowed) {
         P.plastic_inverse[p] = P.F[p].inverse() * flow.correction * elastic_F;
+        // The CPDI domain follows the elastic deformation, not the flow: sheared with F, a
+        // flowing particle's domain became a sliver whose area the cell limit cut by the square
+        // of its stretch, and whose shape-function gradients (∝ 1/width) grew until one step's
+        // velocity gradient inverted it (fine Brazilian disk, 17.9 µs: F₁₁ = 22, domain 74 × 5 µm
+        // with edges 7° apart). Flow without dilatancy keeps the volume, so the domain's area
+        // stays J A₀.
+        if (state.problem.grid.shape_function == ShapeFunctionKind::cpdi)
+          P.domain[p] = flow.correction * P.domain[p];
         trial = trial_stress<D, Thermal>(state, p, psi, &split);
-        flowed = flow.dissipation;
+        // The step the particle failed in releases the shear energy stored beyond the bound;
+        // later steps book the plastic work (crushed_flow.hpp).
+        flowed = damage_before < 1.0 ? flow.released : flow.plastic_work;
       }
     }
   }

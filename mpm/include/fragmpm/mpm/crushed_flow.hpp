@@ -22,15 +22,18 @@
 // the mean is in-plane: the out-of-plane elastic strain stays 0, as plane strain requires when
 // the flow is in-plane.
 //
-// The dissipation booked (flow_dissipation) is the energy the return takes from the particle,
-// ψ⁻(ε) − ψ⁻(ε^new), never negative (crushed_flow.cpp). It exceeds the backward-Euler plastic work
-// τ^new : Δε^p by ½ Δε^p : C : Δε^p. That term is the release of the shear energy a particle
-// stored beyond the bound before it failed, and in steady flow it is the second-order term of the
-// trial step that an elastic particle keeps in its strain energy (update-stress-last works with the
-// start-of-step stress, σ_n : Δε, while the trial state stores σ_n : Δε + ½ Δε : C : Δε). Booking
-// the release therefore treats a flowing particle as an elastic one is treated. Measured on the
-// coarse Brazilian disk (Δx = 0.181 mm, seed 3, φ = 30°, to 20 µs): balance error +1.3 % of the
-// input booking the release, −4.7 % booking τ^new : Δε^p (1,490 J/m less).
+// What flow_dissipation books. In steady flow it is the backward-Euler plastic work at the
+// returned stress, τ^new : Δε^p = Σ_i τ_i^new (ε_i − ε_i^new), the discrete ∫ τ : d^p dt. The energy
+// the return takes, ψ⁻(ε) − ψ⁻(ε^new), exceeds it by ½ Δε^p : C : Δε^p, and that excess is the
+// second-order term of the trial step: update-stress-last works with the start-of-step stress,
+// σ_n : Δε, while the trial state stores σ_n : Δε + ½ Δε : C : Δε. In an elastic particle that term
+// stays in the strain energy and cancels the explicit step's kinetic error over a vibration; booking
+// it as dissipation of a flowing one leaves that kinetic error in the balance. Measured on a free
+// failed block in its longitudinal mode (test_solver.cpp, ν = 0, φ = 30°, one period): balance
+// −0.9 % of E₀ booking τ^new : Δε^p, +24 % booking ψ⁻(ε) − ψ⁻(ε^new). The step a particle fails in
+// is different: its trial state holds the shear energy it stored beyond the bound over many earlier
+// steps, work the balance already counted, and the first return releases it; that step books the
+// whole release, as a damage increment books Δd ψ⁺.
 #include "fragmpm/mpm/types.hpp"
 
 namespace fragmpm::mpm {
@@ -42,8 +45,10 @@ struct CrushedFlowReturn {
   /// identity when the particle does not flow.
   Mat<D> correction = Mat<D>::Identity();
   double deviator_scale = 1.0;  ///< s: the returned deviatoric elastic strain over the trial one
+  /// τ^new : Δε^p, the plastic work of the return per reference volume [J/m³].
+  double plastic_work = 0.0;
   /// ψ⁻(ε) − ψ⁻(ε^new), the energy per reference volume the return releases [J/m³].
-  double dissipation = 0.0;
+  double released = 0.0;
   bool flowed = false;
 };
 
