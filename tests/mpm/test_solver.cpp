@@ -5,7 +5,6 @@
 #include <omp.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -279,6 +278,30 @@ end_time = "10 us"
   EXPECT_NEAR(impulse / window / expected, 1.0, 0.01);
 }
 
+namespace {
+/// The free block of the vibration test (h = 0.5 mm, ν = 0) failed throughout (d = 1) before it
+/// starts, flowing at φ = 30°, one field, in its longitudinal mode v_x = 10 m/s cos(πx/L).
+/// `material_keys` are added to the material (the thermal test's heat capacity).
+mpm::Problem<2> failed_block(const std::string& material_keys = "") {
+  std::string text = block_scene;
+  text.replace(text.find("\"1 mm\""), 6, "\"0.5 mm\"");
+  const std::string drift = "velocity = [\"3 m/s\", \"-2 m/s\"]";
+  text.replace(text.find(drift), drift.size(), "");
+  text.replace(text.find("nu = 0.3"), 8,
+               "nu = 0.0\ndamage = \"time-to-failure\"\nstrength = \"1 GPa\"\ncrack_speed = \"1 "
+               "km/s\"\ndegradation = \"hencky-spectral\"\ncrushed_friction_angle = \"30 deg\"\n" +
+                   material_keys);
+  text += "[contact]\npartitioning = \"off\"\n";
+  auto problem = pipeline::parse_scene(text, "failed-block.toml");
+  for (std::size_t p = 0; p < problem.particles.size(); ++p) {
+    problem.particles.damage[p] = 1.0;
+    problem.particles.v[p] =
+        Vec<2>(10.0 * std::cos(std::numbers::pi * problem.particles.x[p][0] / 0.01), 0.0);
+  }
+  return problem;
+}
+}  // namespace
+
 TEST(Solver, FailedBlockFlowsAtTheMohrCoulombBoundAndBooksItsPlasticWork) {
   // The free block of the vibration test, failed throughout (d = 1) before it starts, with ν = 0
   // and the longitudinal mode v_x = v0 cos(πx/L). Failed material carries no tension, and with
@@ -289,21 +312,7 @@ TEST(Solver, FailedBlockFlowsAtTheMohrCoulombBoundAndBooksItsPlasticWork) {
   // explicit step's own error: measured −0.9 % of E0 after one period, where booking the return's
   // whole release ψ⁻(ε) − ψ⁻(ε^new) gave +24 % (crushed_flow.hpp); the bound is the elastic
   // block's ±6 %.
-  std::string text = block_scene;
-  text.replace(text.find("\"1 mm\""), 6, "\"0.5 mm\"");
-  const std::string drift = "velocity = [\"3 m/s\", \"-2 m/s\"]";
-  text.replace(text.find(drift), drift.size(), "");
-  text.replace(text.find("nu = 0.3"), 8,
-               "nu = 0.0\ndamage = \"time-to-failure\"\nstrength = \"1 GPa\"\ncrack_speed = \"1 "
-               "km/s\"\ndegradation = \"hencky-spectral\"\ncrushed_friction_angle = \"30 deg\"");
-  text += "[contact]\npartitioning = \"off\"\n";
-  auto problem = pipeline::parse_scene(text, "failed-block.toml");
-  for (std::size_t p = 0; p < problem.particles.size(); ++p) {
-    problem.particles.damage[p] = 1.0;
-    problem.particles.v[p] =
-        Vec<2>(10.0 * std::cos(std::numbers::pi * problem.particles.x[p][0] / 0.01), 0.0);
-  }
-  mpm::Solver<2> solver(std::move(problem));
+  mpm::Solver<2> solver(failed_block());
   const double e0 = solver.last_row().kinetic;
   const double ratio = (1.0 - 0.5) / (1.0 + 0.5);
   int on_the_line = 0, beyond_the_line = 0;
@@ -325,4 +334,18 @@ TEST(Solver, FailedBlockFlowsAtTheMohrCoulombBoundAndBooksItsPlasticWork) {
   EXPECT_GT(on_the_line, 10);
   EXPECT_GT(row.totals.flow_dissipation, 0.05 * e0);
   EXPECT_LT(worst_balance, 0.06);
+}
+
+TEST(Solver, CrushedFlowHeatsByItsPlasticWork) {
+  // The failed block with a heat capacity and nothing else thermal: no conduction, no expansion
+  // (so no thermo-elastic heat), no friction (no walls, one field) and no damage growth (d = 1 from
+  // the start). The only heat is the flow's plastic work, so the heat content Σ m c (θ − θ₀)
+  // equals flow_dissipation.
+  mpm::Solver<2> solver(failed_block(
+      "heat_capacity = \"800 J/(kg K)\"\nconductivity = \"0 W/(m K)\"\nexpansion = \"0 1/K\"\n"
+      "temperature = \"20 C\""));
+  while (solver.time() < 5e-6) ASSERT_FALSE(solver.step());
+  const auto& row = solver.last_row();
+  ASSERT_GT(row.totals.flow_dissipation, 0.0);
+  EXPECT_NEAR(row.thermal, row.totals.flow_dissipation, 1e-9 * row.totals.flow_dissipation);
 }

@@ -125,6 +125,7 @@ inline ConstitutiveResult update_constitutive(
         // The step the particle failed in releases the shear energy stored beyond the bound;
         // later steps book the plastic work (crushed_flow.hpp).
         flowed = damage_before < 1.0 ? flow.released : flow.plastic_work;
+        if constexpr (Thermal) state.flow_heat[static_cast<std::size_t>(p)] = flowed;
       }
     }
   }

@@ -148,6 +148,9 @@ struct StepState {
   /// ψ_t per particle from the last constitutive update (thermal and damage only): the damage
   /// heat of the next thermal stage is booked from it.
   std::vector<double> degradable;
+  /// Thermal module with crushed flow only: the energy per reference volume the particle's flow
+  /// dissipated this step [J/m³], heat for the thermal stage, which consumes it.
+  std::vector<double> flow_heat;
   std::unique_ptr<ThermalState<D>> thermal;         ///< exists only when the scene needs it
   std::unique_ptr<PhaseFieldState<D>> phase_field;  ///< exists only with a phase-field material
 

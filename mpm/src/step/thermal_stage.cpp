@@ -294,6 +294,12 @@ double update_particle_temperatures(StepState<D>& state, double dt) {
                                      T.reference[m], J, d - T.last_damage[p]) /
                  (density0 * T.specific_heat[m]);
       }
+      // The plastic work of crushed material's flow is heat (all of it: nothing stores cold work
+      // in a cohesionless granular flow).
+      if (!state.flow_heat.empty()) {
+        theta += state.flow_heat[static_cast<std::size_t>(p)] / (density0 * T.specific_heat[m]);
+        state.flow_heat[static_cast<std::size_t>(p)] = 0.0;
+      }
       P.temperature[p] = theta;
       T.last_J[p] = J;
       T.last_damage[p] = d;

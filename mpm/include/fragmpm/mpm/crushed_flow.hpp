@@ -23,17 +23,17 @@
 // the flow is in-plane.
 //
 // What flow_dissipation books. In steady flow it is the backward-Euler plastic work at the
-// returned stress, τ^new : Δε^p = Σ_i τ_i^new (ε_i − ε_i^new), the discrete ∫ τ : d^p dt. The energy
-// the return takes, ψ⁻(ε) − ψ⁻(ε^new), exceeds it by ½ Δε^p : C : Δε^p, and that excess is the
-// second-order term of the trial step: update-stress-last works with the start-of-step stress,
+// returned stress, τ^new : Δε^p = Σ_i τ_i^new (ε_i − ε_i^new), the discrete ∫ τ : d^p dt. The
+// energy the return takes, ψ⁻(ε) − ψ⁻(ε^new), exceeds it by ½ Δε^p : C : Δε^p, and that excess is
+// the second-order term of the trial step: update-stress-last works with the start-of-step stress,
 // σ_n : Δε, while the trial state stores σ_n : Δε + ½ Δε : C : Δε. In an elastic particle that term
-// stays in the strain energy and cancels the explicit step's kinetic error over a vibration; booking
-// it as dissipation of a flowing one leaves that kinetic error in the balance. Measured on a free
-// failed block in its longitudinal mode (test_solver.cpp, ν = 0, φ = 30°, one period): balance
-// −0.9 % of E₀ booking τ^new : Δε^p, +24 % booking ψ⁻(ε) − ψ⁻(ε^new). The step a particle fails in
-// is different: its trial state holds the shear energy it stored beyond the bound over many earlier
-// steps, work the balance already counted, and the first return releases it; that step books the
-// whole release, as a damage increment books Δd ψ⁺.
+// stays in the strain energy and cancels the explicit step's kinetic error over a vibration;
+// booking it as dissipation of a flowing one leaves that kinetic error in the balance. Measured on
+// a free failed block in its longitudinal mode (test_solver.cpp, ν = 0, φ = 30°, one period):
+// balance −0.9 % of E₀ booking τ^new : Δε^p, +24 % booking ψ⁻(ε) − ψ⁻(ε^new). The step a particle
+// fails in is different: its trial state holds the shear energy it stored beyond the bound over
+// many earlier steps, work the balance already counted, and the first return releases it; that step
+// books the whole release, as a damage increment books Δd ψ⁺.
 #include "fragmpm/mpm/types.hpp"
 
 namespace fragmpm::mpm {
