@@ -178,9 +178,9 @@ struct Solver<D>::Impl {
   void start_thermal() {
     state.thermal = std::make_unique<ThermalState<D>>(state.problem);
     if (state.plan.damage) state.degradable.assign(state.problem.particles.size(), 0.0);
-    const bool flows = std::any_of(state.crushed_sine.begin(), state.crushed_sine.end(),
-                                   [](double sine) { return sine > 0.0; });
-    if (flows) state.flow_heat.assign(state.problem.particles.size(), 0.0);
+    // F_p⁻¹ exists exactly when failed material can flow (settle_plastic_deformation).
+    if (!state.problem.particles.plastic_inverse.empty())
+      state.flow_heat.assign(state.problem.particles.size(), 0.0);
   }
 
   /// Stress and stored energy of the current F and d (no damage growth), and the series row of
