@@ -248,6 +248,38 @@ radius = "4 mm")");
   EXPECT_NEAR(mass, rho * std::numbers::pi * r * r, 0.02 * rho * std::numbers::pi * r * r);
 }
 
+// A ring (a disk with inner_radius): its particles lie between the two circles, its area is
+// π(R² − r²) to the lattice's resolution, and the hole's rim is a surface like the outer one.
+TEST(Scene, RingAreaAndBothRimsAreSurfaces) {
+  const std::string text = replace(kGood, R"(shape = "box"
+min = ["2 mm", "2 mm"]
+max = ["6 mm", "4 mm"])",
+                                   R"(shape = "disk"
+center = ["10 mm", "10 mm"]
+radius = "6 mm"
+inner_radius = "4 mm")");
+  const mpm::Problem<2> p = fp::parse_scene(text, "ring.toml");
+  const double outer = 6e-3, inner = 4e-3, s = 2.5e-4;
+  double area = 0.0;
+  int inner_rim = 0, outer_rim = 0;
+  for (std::size_t k = 0; k < p.particles.size(); ++k) {
+    area += p.particles.volume0[k];
+    const double r = (p.particles.x[k] - Eigen::Vector2d(10e-3, 10e-3)).norm();
+    EXPECT_GE(r, inner);
+    EXPECT_LE(r, outer);
+    const bool near_rim = r - inner < std::sqrt(2.0) * s || outer - r < std::sqrt(2.0) * s;
+    if (!near_rim) {
+      EXPECT_EQ(p.particles.surface[k], 0);
+    }
+    if (p.particles.surface[k]) (r < 5e-3 ? inner_rim : outer_rim) += 1;
+  }
+  const double exact = std::numbers::pi * (outer * outer - inner * inner);
+  EXPECT_NEAR(area, exact, 0.02 * exact);
+  // Rim lengths 2π r over the spacing s: about 100 and 150 particles.
+  EXPECT_GT(inner_rim, 2.0 * std::numbers::pi * inner / s * 0.9);
+  EXPECT_GT(outer_rim, 2.0 * std::numbers::pi * outer / s * 0.9);
+}
+
 TEST(Scene, InitialRigidMotionAboutTheCentroid) {
   const std::string text = replace(kGood, R"(shape = "box"
 min = ["2 mm", "2 mm"]
@@ -632,6 +664,14 @@ radius = "4 mm")"),
       {"key_of_other_shape",
        replace(kGood, "shape = \"box\"", "shape = \"box\"\nradius = \"1 mm\""), "radius",
        "bodies[0].radius", "unknown key"},
+      {"ring_hole_not_inside", with_second_body(R"(name = "ring"
+material = "glass"
+shape = "disk"
+center = ["12 mm", "12 mm"]
+radius = "4 mm"
+inner_radius = "4 mm")"),
+       "inner_radius", "bodies[1].inner_radius",
+       "expected a length from 0 up to the radius 0.004 m (a ring's hole), got 0.004 m"},
       {"self_intersecting_polygon",
        replace(kGood, kBox,
                "shape = \"polygon\"\nvertices = [[0.002, 0.002], [0.004, 0.004], [0.004, 0.002], "

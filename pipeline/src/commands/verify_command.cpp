@@ -33,6 +33,14 @@ const std::vector<VerifyCase>& verify_cases() {
        "KT19 5.1 plate under impact, phase field at h = 0.25 mm: crack start, speed vs Rayleigh, "
        "branching; isotropic and cubic",
        verify_plate_impact},
+      {"sphere-beam",
+       "KT19 5.3 disk striking a free beam, phase field: crack energy while the median crack "
+       "crosses vs G_c x depth; three surface energies at the paper's h",
+       verify_sphere_beam},
+      {"two-rings",
+       "KT19 5.2 two phase-field rings colliding at 10 and 20 m/s: pieces per ring vs the paper's "
+       "2 and 5",
+       verify_two_rings},
       {"kalthoff", "P1 Kalthoff-Winkler plate: crack angle and crack speed", verify_kalthoff},
       {"brazilian",
        "P5 dynamic Brazilian disk: fragment count, mean size and speed at two resolutions, three "

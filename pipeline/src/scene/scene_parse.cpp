@@ -177,11 +177,15 @@ Shape read_shape(const Section& b) {
     b.allow_only(keys);
   };
   if (kind == "disk") {
-    allow({"center", "radius"});
+    allow({"center", "radius", "inner_radius"});
     s.kind = ShapeKind::disk;
     s.center = b.vector("center", QK::length);
     s.radius = b.quantity("radius", QK::length);
     if (!(s.radius > 0.0)) b.expected("radius", "a positive length");
+    s.inner_radius = b.optional_quantity("inner_radius", QK::length).value_or(0.0);
+    if (!(s.inner_radius >= 0.0 && s.inner_radius < s.radius))
+      b.fail("inner_radius", "expected a length from 0 up to the radius " + si(s.radius, "m") +
+                                 " (a ring's hole), got " + si(s.inner_radius, "m"));
   } else if (kind == "box") {
     allow({"min", "max"});
     s.kind = ShapeKind::box;

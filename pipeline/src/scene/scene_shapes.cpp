@@ -55,8 +55,10 @@ bool polygon_contains(const std::vector<Vec2>& v, const Vec2& p) {
 
 bool contains(const Shape& shape, const Vec2& p) {
   switch (shape.kind) {
-    case ShapeKind::disk:
-      return (p - shape.center).squaredNorm() <= shape.radius * shape.radius;
+    case ShapeKind::disk: {
+      const double r2 = (p - shape.center).squaredNorm();
+      return r2 <= shape.radius * shape.radius && r2 >= shape.inner_radius * shape.inner_radius;
+    }
     case ShapeKind::box:
       return p.x() >= shape.min.x() && p.x() <= shape.max.x() && p.y() >= shape.min.y() &&
              p.y() <= shape.max.y();

@@ -18,6 +18,7 @@ struct Shape {
   ShapeKind kind = ShapeKind::box;
   Vec2 center = Vec2::Zero();  ///< disk [m]
   double radius = 0.0;         ///< disk [m]
+  double inner_radius = 0.0;   ///< disk: a ring when > 0, the hole concentric [m]
   Vec2 min = Vec2::Zero();     ///< box lower corner [m]
   Vec2 max = Vec2::Zero();     ///< box upper corner [m]
   std::vector<Vec2> vertices;  ///< polygon, either orientation [m]

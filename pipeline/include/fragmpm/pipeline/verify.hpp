@@ -80,6 +80,13 @@ std::vector<VerifyRow> verify_phase_field_bar(const VerifyOptions& options);
 /// [KT19] §5.1 plate under impact loading, quick variant (h = 0.25 mm): crack start, speed against
 /// the Rayleigh speed, branching, crack energy; isotropic and cubic (`quick`: isotropic only).
 std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options);
+/// [KT19] §5.3 sphere-beam impact, phase-field beam: the crack energy spent while the median crack
+/// crosses the beam against G_c × depth, crack extent, position and angle; isotropic at h = 0.25 mm
+/// (`quick`), and the three surface energies of the paper at its h = 0.125 mm.
+std::vector<VerifyRow> verify_sphere_beam(const VerifyOptions& options);
+/// [KT19] §5.2 two rings colliding at ±10 and ±20 m/s: pieces per ring against the paper's 2 and 5,
+/// crack energy; h = 1 mm (`quick`) and the paper's 0.5 mm.
+std::vector<VerifyRow> verify_two_rings(const VerifyOptions& options);
 /// P1: Kalthoff–Winkler crack angle and speed ([XLS21] §4.3; [HH17] §3.2).
 std::vector<VerifyRow> verify_kalthoff(const VerifyOptions& options);
 /// P5: Brazilian disk fragment statistics at two resolutions, three Weibull seeds, partitioned and
