@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <vector>
 
 #include "fragmpm/pipeline/embedded_scenes.hpp"
@@ -21,6 +22,7 @@ namespace fragmpm::pipeline {
 namespace {
 
 constexpr double notch_tip = 50e-3;             // [m], scenes/paper/plate-impact.toml
+constexpr double notch_y = 20e-3;               // [m], the notch line
 constexpr double rayleigh_speed = 2125.0;       // [m/s], [KT19] §5.1
 constexpr double cracked = 0.9;                 // d of a cracked particle
 constexpr double started = notch_tip + 0.5e-3;  // the crack has started once its tip passes this
@@ -149,6 +151,14 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v) {
       row("branch_time_us (paper isotropic: about 35)", branch ? branch->time * 1e6 : nan, 35.0));
   rows.push_back(row("branch_x_mm", branch ? branch->branch_x * 1e3 : nan, nan));
   rows.push_back(row("final_tip_x_mm", last.tip_x * 1e3, nan));
+  // Direction from the notch's end to the tip at the last observation before any branching (the
+  // weak direction the anisotropic cases follow), counter-clockwise from x.
+  const CrackState& unbranched = branch && branch != &history.front() ? *(branch - 1) : last;
+  rows.push_back(row("crack_angle_deg (notch end to tip, before branching)",
+                     start ? std::atan2(unbranched.tip_y - notch_y, unbranched.tip_x - notch_tip) *
+                                 180.0 / std::numbers::pi
+                           : nan,
+                     nan));
   rows.push_back(row("final_crack_energy_J/m", last.fracture_energy, nan));
   return rows;
 }
@@ -157,11 +167,17 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v) {
 
 std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options) {
   // Case (i), isotropic, G_c = 3 J/m²; case (ii), cubic γ = (1, 1, 0, 74) with Ḡ_c = 2.121 J/m²
-  // (G_c,min = 3 J/m² as in (i)) and the axes 30° clockwise from x.
+  // (G_c,min = 3 J/m² as in (i)) and the axes 30° clockwise from x; case (iii), orthotropic
+  // γ₂₂₂₂ = 80 with the same Ḡ_c and axes, where the paper finds one weak direction and no
+  // branching.
   const PlateVariant variants[] = {
       {"isotropic", nullptr, 3.0},
       {"cubic-30deg",
        "{ gamma_1111 = 1, gamma_2222 = 1, gamma_1122 = 0, gamma_1212 = 74, orientation = \"-30 "
+       "deg\" }",
+       2.121},
+      {"orthotropic-30deg",
+       "{ gamma_1111 = 1, gamma_2222 = 80, gamma_1122 = 0, gamma_1212 = 74, orientation = \"-30 "
        "deg\" }",
        2.121}};
   std::vector<VerifyRow> rows;
