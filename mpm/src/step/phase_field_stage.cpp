@@ -192,6 +192,7 @@ void solve_phase_field(StepState<D>& state) {
   pf.band_width = 1;
   for (int k = 0; k < D; ++k) pf.band_width *= 2 * pf.reach + 1;
   const int width = pf.band_width, reach = pf.reach;
+  const std::int64_t centre = band_index<D>(IVec<D>::Zero(), reach);
   reset_array(pf.band, m * static_cast<std::size_t>(width), 0.0);
   reset_array(pf.guess_weight, m, 0.0);
   if (pf.rhs.size() != unknowns) {
@@ -209,35 +210,67 @@ void solve_phase_field(StepState<D>& state) {
     const double local = source + volume * drive;
     const double diffusion = volume * pf.gradient_coefficient[material];
     const Mat<D> to_reference = P.F[p].transpose();  // ∇_X S̄ = Fᵀ ∇_x S̄
+    // The entries that reach an unknown, packed: their rows, weights, reference gradients and
+    // positions in the band, band_index(node_f − node_e) = place_f − place_e + centre (the band
+    // index is linear in the offset). One division per entry finds a node's coordinates.
     std::array<std::int32_t, Stencil<D>::capacity> row;
-    std::array<IVec<D>, Stencil<D>::capacity> node;
+    std::array<std::int64_t, Stencil<D>::capacity> place;
+    std::array<double, Stencil<D>::capacity> weight;
     std::array<Vec<D>, Stencil<D>::capacity> gradient;
+    std::array<int, Stencil<D>::capacity> entry_of;
+    int used = 0;
     for (int e = 0; e < s.count; ++e) {
-      row[e] = -1;
       if (empty_entry(s, e)) continue;
       const std::size_t i = static_cast<std::size_t>(s.node[e]);
-      row[e] = pf.node_unknown[i * K + static_cast<std::size_t>(slot_of(pf, i, field_of(p)))];
-      node[e] = grid.global(s.node[e]);
-      gradient[e] = to_reference * s.gradient[e];
+      row[used] = pf.node_unknown[i * K + static_cast<std::size_t>(slot_of(pf, i, field_of(p)))];
+      if (row[used] < 0) continue;
+      std::int64_t rest = s.node[e], stride = 1;
+      place[used] = 0;
+      for (int k = 0; k < D; ++k) {
+        const std::int64_t coordinate = k + 1 < D ? rest % grid.extent[k] : rest;
+        rest = k + 1 < D ? rest / grid.extent[k] : 0;
+        place[used] += coordinate * stride;
+        stride *= 2 * reach + 1;
+      }
+      weight[used] = s.weight[e];
+      gradient[used] = to_reference * s.gradient[e];
+      entry_of[used] = e;
+      ++used;
+    }
+    for (int a = 0; a < used; ++a) {
+      const std::size_t r = static_cast<std::size_t>(row[a]);
+      pf.rhs[row[a]] += source * weight[a];
+      pf.guess[row[a]] += volume * weight[a] * (1.0 - P.damage[p]);
+      pf.guess_weight[r] += volume * weight[a];
+    }
+    // K_ab is symmetric: each pair is computed once and added to both rows.
+    if (!has_fourth_order<D, Kind>(pf, material)) {
+      for (int a = 0; a < used; ++a) {
+        double* band_a = pf.band.data() + static_cast<std::size_t>(row[a]) * width + centre;
+        const double local_a = local * weight[a];
+        const Vec<D> diffusion_a = diffusion * gradient[a];
+        band_a[0] += local_a * weight[a] + diffusion_a.dot(gradient[a]);
+        for (int b = a + 1; b < used; ++b) {
+          const double entry = local_a * weight[b] + diffusion_a.dot(gradient[b]);
+          const std::int64_t offset = place[b] - place[a];
+          band_a[offset] += entry;
+          pf.band[static_cast<std::size_t>(row[b]) * width + centre - offset] += entry;
+        }
+      }
+      return;
     }
     // The fourth-order term ([KT19] eq. (57), scaled by G_c/(4 l₀)): V G_c l₀³ χ_Iᵀ Γ_g χ_J with χ
     // the reference-configuration second derivatives (Fᵀ H F, F taken uniform over the stencil).
     std::array<Eigen::Vector3d, Stencil<D>::capacity> chi;
-    const bool fourth_order = has_fourth_order<D, Kind>(pf, material);
-    if (fourth_order) reference_second_derivatives<D>(P.x[p], P.F[p], grid, s.count, chi);
-    for (int e = 0; e < s.count; ++e) {
-      if (row[e] < 0) continue;
-      const std::size_t r = static_cast<std::size_t>(row[e]);
-      pf.rhs[row[e]] += source * s.weight[e];
-      pf.guess[row[e]] += volume * s.weight[e] * (1.0 - P.damage[p]);
-      pf.guess_weight[r] += volume * s.weight[e];
-      double* band = pf.band.data() + r * static_cast<std::size_t>(width);
-      for (int f = 0; f < s.count; ++f) {
-        if (row[f] < 0) continue;
-        double entry = local * s.weight[e] * s.weight[f] + diffusion * gradient[e].dot(gradient[f]);
-        if (fourth_order) entry += volume * chi[e].dot(pf.fourth_order[material] * chi[f]);
-        band[band_index<D>(node[f] - node[e], reach)] += entry;
-      }
+    reference_second_derivatives<D>(P.x[p], P.F[p], grid, s.count, chi);
+    for (int a = 0; a < used; ++a) {
+      double* band_a = pf.band.data() + static_cast<std::size_t>(row[a]) * width + centre;
+      const Eigen::Vector3d chi_a =
+          volume * (pf.fourth_order[material].transpose() * chi[entry_of[a]]);
+      for (int b = 0; b < used; ++b)
+        band_a[place[b] - place[a]] += local * weight[a] * weight[b] +
+                                       diffusion * gradient[a].dot(gradient[b]) +
+                                       chi_a.dot(chi[entry_of[b]]);
     }
   });
 
@@ -255,7 +288,6 @@ void solve_phase_field(StepState<D>& state) {
   const std::size_t nonzeros = static_cast<std::size_t>(pf.outer[m]);
   size_array(pf.inner, nonzeros);
   size_array(pf.values, nonzeros);
-  const int centre = band_index<D>(IVec<D>::Zero(), reach);
 #pragma omp parallel for schedule(static)
   for (std::int64_t rr = 0; rr < unknowns; ++rr) {
     const std::size_t r = static_cast<std::size_t>(rr);

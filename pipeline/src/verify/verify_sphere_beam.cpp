@@ -14,6 +14,7 @@
 // paper's, it includes whatever else cracked meanwhile. A second reading that does not depend on
 // where the two points fall: the slope of Ψ_f against the widest crack's extent over the
 // observations between them (least squares), which is the energy per crack area while it runs.
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,8 +24,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include <Eigen/Dense>
-
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "verify_run.hpp"
@@ -33,10 +32,10 @@ namespace fragmpm::pipeline {
 
 namespace {
 
-constexpr int beam_body = 0;                // scenes/paper/sphere-beam.toml: the beam comes first
-constexpr double beam_depth = 10e-3;        // [m] across the beam, along x
-constexpr double cracked = 0.9;             // d of a cracked particle
-constexpr double started_fraction = 0.2;    // of the depth: a crack shorter than this has not run
+constexpr int beam_body = 0;              // scenes/paper/sphere-beam.toml: the beam comes first
+constexpr double beam_depth = 10e-3;      // [m] across the beam, along x
+constexpr double cracked = 0.9;           // d of a cracked particle
+constexpr double started_fraction = 0.2;  // of the depth: a crack shorter than this has not run
 
 struct Crack {
   double extent = 0.0;     ///< width of the depth its reference positions cover [m]
@@ -71,8 +70,7 @@ BeamState observe(const mpm::Solver<2>& solver, const std::vector<Eigen::Vector2
     return (i << 32) ^ (j & 0xffffffff);
   };
   std::unordered_map<std::int64_t, std::vector<std::size_t>> buckets;
-  for (std::size_t k = 0; k < members.size(); ++k)
-    buckets[key(reference[members[k]])].push_back(k);
+  for (std::size_t k = 0; k < members.size(); ++k) buckets[key(reference[members[k]])].push_back(k);
   std::vector<int> label(members.size(), -1);
   std::vector<std::size_t> stack;
   int next = 0;
@@ -147,8 +145,8 @@ std::vector<VerifyRow> run_beam(const BeamVariant& v, double cell_size, int leve
   mpm::Solver<2> solver(std::move(problem));
   std::vector<BeamState> history;
   const std::string what = std::string("sphere-beam ") + v.name + " " + cell_label(cell_size);
-  const TimedRun run = run_until(
-      solver, solver.problem().stop.end_time, what, 1e-6, [&](const mpm::Solver<2>& s) {
+  const TimedRun run =
+      run_until(solver, solver.problem().stop.end_time, what, 1e-6, [&](const mpm::Solver<2>& s) {
         history.push_back(observe(s, reference, spacing));
         const BeamState& b = history.back();
         std::fprintf(stderr,
@@ -184,8 +182,7 @@ std::vector<VerifyRow> run_beam(const BeamVariant& v, double cell_size, int leve
   std::vector<VerifyRow> rows;
   const bool crossed = start && end;
   const double spent = crossed ? end->fracture_energy - start->fracture_energy : nan;
-  VerifyRow energy =
-      row("crossing_crack_energy/(G_c depth) (paper 1.025)", spent / expected, 1.0);
+  VerifyRow energy = row("crossing_crack_energy/(G_c depth) (paper 1.025)", spent / expected, 1.0);
   if (!v.anisotropy) {  // [KT19] states the energy check for the isotropic case (i) only
     energy.target_low = 0.95;
     energy.target_high = 1.05;

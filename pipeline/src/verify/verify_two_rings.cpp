@@ -8,14 +8,14 @@
 // at least 1 % of its ring's mass: the paper counts the pieces its figures show, and a chip of a
 // few particles crushed at the contact is not one of them. The count of all resolved fragments
 // (4 particles or more) is reported beside it.
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
 #include <vector>
-
-#include <fmt/core.h>
 
 #include "fragmpm/analysis/frame_fragments.hpp"
 #include "fragmpm/analysis/frame_reference.hpp"
@@ -79,8 +79,8 @@ std::vector<VerifyRow> run_rings(double speed, int paper_pieces, double cell_siz
   mpm::Solver<2> solver(std::move(problem));
   std::vector<RingsState> history;
   const TimedRun run = run_until(
-      solver, solver.problem().stop.end_time,
-      "two-rings " + name + " " + cell_label(cell_size), 25e-6, [&](const mpm::Solver<2>& s) {
+      solver, solver.problem().stop.end_time, "two-rings " + name + " " + cell_label(cell_size),
+      25e-6, [&](const mpm::Solver<2>& s) {
         history.push_back(observe(s, first));
         const RingsState& r = history.back();
         std::fprintf(stderr,
@@ -110,13 +110,14 @@ std::vector<VerifyRow> run_rings(double speed, int paper_pieces, double cell_siz
   std::vector<VerifyRow> rows;
   const char* side[2] = {"left", "right"};
   for (int body = 0; body < 2; ++body) {
-    VerifyRow pieces = row(std::string(side[body]) + "_ring_pieces (paper " +
-                               std::to_string(paper_pieces) + ")",
-                           last.ring[body].pieces, paper_pieces);
+    VerifyRow pieces =
+        row(std::string(side[body]) + "_ring_pieces (paper " + std::to_string(paper_pieces) + ")",
+            last.ring[body].pieces, paper_pieces);
     pieces.target_low = paper_pieces;
     pieces.target_high = paper_pieces;
     rows.push_back(pieces);
-    rows.push_back(row(std::string(side[body]) + "_ring_fragments", last.ring[body].fragments, nan));
+    rows.push_back(
+        row(std::string(side[body]) + "_ring_fragments", last.ring[body].fragments, nan));
   }
   rows.push_back(row("final_crack_energy_J/m", last.fracture_energy, nan));
   rows.push_back(row("crack_energy_settled_us (98 % of final)", settled * 1e6, nan));
