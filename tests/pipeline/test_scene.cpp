@@ -219,11 +219,16 @@ kind = "fixed"
   EXPECT_EQ(surface, 2u * 16u + 6u);
 }
 
+namespace {
+// kGood with its block's box replaced by the lines of another shape.
+std::string with_shape(const std::string& shape) {
+  return replace(kGood, "shape = \"box\"\nmin = [\"2 mm\", \"2 mm\"]\nmax = [\"6 mm\", \"4 mm\"]",
+                 shape);
+}
+}  // namespace
+
 TEST(Scene, DiskAreaMassAndSurface) {
-  const std::string text = replace(kGood, R"(shape = "box"
-min = ["2 mm", "2 mm"]
-max = ["6 mm", "4 mm"])",
-                                   R"(shape = "disk"
+  const std::string text = with_shape(R"(shape = "disk"
 center = ["10 mm", "10 mm"]
 radius = "4 mm")");
   const mpm::Problem<2> p = fp::parse_scene(text, "disk.toml");
@@ -251,10 +256,7 @@ radius = "4 mm")");
 // A ring (a disk with inner_radius): its particles lie between the two circles, its area is
 // π(R² − r²) to the lattice's resolution, and the hole's rim is a surface like the outer one.
 TEST(Scene, RingAreaAndBothRimsAreSurfaces) {
-  const std::string text = replace(kGood, R"(shape = "box"
-min = ["2 mm", "2 mm"]
-max = ["6 mm", "4 mm"])",
-                                   R"(shape = "disk"
+  const std::string text = with_shape(R"(shape = "disk"
 center = ["10 mm", "10 mm"]
 radius = "6 mm"
 inner_radius = "4 mm")");
@@ -281,10 +283,7 @@ inner_radius = "4 mm")");
 }
 
 TEST(Scene, InitialRigidMotionAboutTheCentroid) {
-  const std::string text = replace(kGood, R"(shape = "box"
-min = ["2 mm", "2 mm"]
-max = ["6 mm", "4 mm"])",
-                                   R"(shape = "disk"
+  const std::string text = with_shape(R"(shape = "disk"
 center = ["10 mm", "10 mm"]
 radius = "4 mm"
 velocity = ["1 m/s", "-2 m/s"]

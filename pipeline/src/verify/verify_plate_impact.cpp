@@ -80,11 +80,9 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v) {
   std::map<std::string, std::string> overrides{{"output.interval", "0.0"}};
   overrides["materials[0].fracture_energy"] = toml_number(v.fracture_energy);
   std::string text = with_overrides(embedded_scene("paper/plate-impact.toml"), overrides);
-  if (v.anisotropy) {
-    const std::string key = "fracture_energy = ";
-    const auto at = text.find(key);
-    text.insert(text.find('\n', at) + 1, std::string("anisotropy = ") + v.anisotropy + "\n");
-  }
+  if (v.anisotropy)
+    text =
+        insert_after_line(text, "fracture_energy = ", std::string("anisotropy = ") + v.anisotropy);
   mpm::Solver<2> solver(parse_scene(text, "scenes/paper/plate-impact.toml"));
   const double cell = solver.problem().grid.cell_size;
   std::vector<CrackState> history;
@@ -127,13 +125,8 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v) {
                                 : 0.0;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto row = [&](const std::string& metric, double value, double reference) {
-    VerifyRow r = level_row("plate-impact", v.name, 0, cell, solver, run);
-    r.metric = metric;
-    r.value = value;
-    r.reference = reference;
-    r.error =
-        std::isfinite(reference) && reference != 0.0 ? relative_error(value, reference) : value;
-    return r;
+    return metric_row(level_row("plate-impact", v.name, 0, cell, solver, run), metric, value,
+                      reference);
   };
   std::vector<VerifyRow> rows;
   rows.push_back(

@@ -2,6 +2,7 @@
 // Shared driver of the verification cases that run a scene to an end time and look at the state
 // along the way.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -79,6 +80,28 @@ inline VerifyRow level_row(const std::string& case_name, const std::string& vari
 /// |value − reference| / |reference|.
 inline double relative_error(double value, double reference) {
   return std::abs(value - reference) / std::abs(reference);
+}
+
+/// `level` (a level_row) for `metric`: its error is relative to a finite, non-zero reference, and
+/// the value itself where there is none (NaN: a reading reported without a reference).
+inline VerifyRow metric_row(VerifyRow level, const std::string& metric, double value,
+                            double reference) {
+  level.metric = metric;
+  level.value = value;
+  level.reference = reference;
+  level.error =
+      std::isfinite(reference) && reference != 0.0 ? relative_error(value, reference) : value;
+  return level;
+}
+
+/// `text` with `line` inserted after the first line that holds `key` (e.g. a material's
+/// `anisotropy = {…}` after its `fracture_energy`).
+inline std::string insert_after_line(std::string text, const std::string& key,
+                                     const std::string& line) {
+  const auto at = text.find(key);
+  if (at == std::string::npos) throw std::logic_error("scene text without '" + key + "'");
+  text.insert(text.find('\n', at) + 1, line + "\n");
+  return text;
 }
 
 }  // namespace fragmpm::pipeline

@@ -134,11 +134,9 @@ std::vector<VerifyRow> run_beam(const BeamVariant& v, double cell_size, int leve
   overrides["grid.cell_size"] = toml_number(cell_size);
   overrides["materials[0].fracture_energy"] = toml_number(v.fracture_energy);
   std::string text = with_overrides(embedded_scene("paper/sphere-beam.toml"), overrides);
-  if (v.anisotropy) {
-    const std::string key = "fracture_energy = ";
-    const auto at = text.find(key);
-    text.insert(text.find('\n', at) + 1, std::string("anisotropy = ") + v.anisotropy + "\n");
-  }
+  if (v.anisotropy)
+    text =
+        insert_after_line(text, "fracture_energy = ", std::string("anisotropy = ") + v.anisotropy);
   mpm::Problem<2> problem = parse_scene(text, "scenes/paper/sphere-beam.toml");
   const double spacing = cell_size / 2.0;  // the scene samples 2 × 2 particles per cell
   const std::vector<Eigen::Vector2d> reference = problem.particles.x;
@@ -169,15 +167,9 @@ std::vector<VerifyRow> run_beam(const BeamVariant& v, double cell_size, int leve
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double expected = v.crossing_energy * beam_depth;  // A_f G_c per unit thickness
-  auto row = [&](const std::string& metric, double value, double reference_value) {
-    VerifyRow r = level_row("sphere-beam", v.name, level, cell_size, solver, run);
-    r.metric = metric;
-    r.value = value;
-    r.reference = reference_value;
-    r.error = std::isfinite(reference_value) && reference_value != 0.0
-                  ? relative_error(value, reference_value)
-                  : value;
-    return r;
+  auto row = [&](const std::string& metric, double value, double reference) {
+    return metric_row(level_row("sphere-beam", v.name, level, cell_size, solver, run), metric,
+                      value, reference);
   };
   std::vector<VerifyRow> rows;
   const bool crossed = start && end;

@@ -99,13 +99,8 @@ std::vector<VerifyRow> run_rings(double speed, int paper_pieces, double cell_siz
     }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto row = [&](const std::string& metric, double value, double reference) {
-    VerifyRow r = level_row("two-rings", name, level, cell_size, solver, run);
-    r.metric = metric;
-    r.value = value;
-    r.reference = reference;
-    r.error =
-        std::isfinite(reference) && reference != 0.0 ? relative_error(value, reference) : value;
-    return r;
+    return metric_row(level_row("two-rings", name, level, cell_size, solver, run), metric, value,
+                      reference);
   };
   std::vector<VerifyRow> rows;
   const char* side[2] = {"left", "right"};
