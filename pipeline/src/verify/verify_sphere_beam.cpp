@@ -64,13 +64,16 @@ BeamState observe(const mpm::Solver<2>& solver, const std::vector<Eigen::Vector2
     if (P.body[p] == beam_body && P.damage[p] >= cracked) members.push_back(p);
   // Buckets of one reach on the reference lattice; neighbours are in the 3 × 3 buckets around.
   const double reach = 1.5 * spacing;
-  auto key = [&](const Eigen::Vector2d& x) {
-    const auto i = static_cast<std::int64_t>(std::floor(x.x() / reach));
-    const auto j = static_cast<std::int64_t>(std::floor(x.y() / reach));
-    return (i << 32) ^ (j & 0xffffffff);
+  auto bucket_of = [&](const Eigen::Vector2d& x) {
+    return std::pair{static_cast<std::int64_t>(std::floor(x.x() / reach)),
+                     static_cast<std::int64_t>(std::floor(x.y() / reach))};
   };
+  auto key = [](std::int64_t i, std::int64_t j) { return (i << 32) ^ (j & 0xffffffff); };
   std::unordered_map<std::int64_t, std::vector<std::size_t>> buckets;
-  for (std::size_t k = 0; k < members.size(); ++k) buckets[key(reference[members[k]])].push_back(k);
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const auto [i, j] = bucket_of(reference[members[k]]);
+    buckets[key(i, j)].push_back(k);
+  }
   std::vector<int> label(members.size(), -1);
   std::vector<std::size_t> stack;
   int next = 0;
@@ -91,11 +94,10 @@ BeamState observe(const mpm::Solver<2>& solver, const std::vector<Eigen::Vector2
       sum += x;
       second += x * x.transpose();
       ++n;
-      const auto i = static_cast<std::int64_t>(std::floor(x.x() / reach));
-      const auto j = static_cast<std::int64_t>(std::floor(x.y() / reach));
+      const auto [i, j] = bucket_of(x);
       for (std::int64_t di = -1; di <= 1; ++di)
         for (std::int64_t dj = -1; dj <= 1; ++dj) {
-          const auto found = buckets.find(((i + di) << 32) ^ ((j + dj) & 0xffffffff));
+          const auto found = buckets.find(key(i + di, j + dj));
           if (found == buckets.end()) continue;
           for (std::size_t other : found->second)
             if (label[other] < 0 && (reference[members[other]] - x).norm() <= reach) {
