@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fragmpm/mpm/solver.hpp"
+#include "fragmpm/mpm/wave_speed.hpp"
 
 namespace fragmpm::mpm {
 
@@ -39,13 +40,16 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   // The elastic law follows the degradation: the Hencky split needs the Hencky energy.
   bool hencky = false, neo_hookean = false;
   for (const MaterialSpec& m : problem.materials)
-    (m.degradation == Degradation::hencky_spectral ? hencky : neo_hookean) = true;
-  const char* elasticity = hencky && neo_hookean ? "neo-Hookean and Hencky (hencky-spectral) bodies"
-                           : hencky              ? "Hencky bodies (hencky-spectral degradation)"
+    (elastic_law(m) == ElasticLaw::hencky ? hencky : neo_hookean) = true;
+  const char* elasticity = hencky && neo_hookean ? "neo-Hookean and Hencky bodies"
+                           : hencky              ? "Hencky bodies (phase field or hencky-spectral)"
                                                  : "neo-Hookean bodies";
   plan.push_back({"mechanics", true,
                   std::string("explicit update-stress-last MPM with ") + shape +
-                      " shape functions, " + elasticity});
+                      " shape functions, " + elasticity +
+                      (D == 3                 ? ""
+                       : problem.plane_stress ? ", plane stress ([physics] plane = \"stress\")"
+                                              : ", plane strain")});
   plan.push_back({"walls", !problem.walls.empty(),
                   problem.walls.empty() ? "no walls in the scene"
                                         : std::to_string(problem.walls.size()) + " rigid wall(s)"});

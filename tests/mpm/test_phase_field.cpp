@@ -87,6 +87,29 @@ TEST(PhaseFieldSplit, SmallStrainIsThePapersSpectralSplit) {
   EXPECT_EQ(compressed.tensile_stress.norm(), 0.0);
 }
 
+TEST(PhaseFieldSplit, PlaneStressBulkModulusGivesUniaxialStressWithYoungsModulus) {
+  // A plate (σ_zz = 0) stretched along x with free sides: log strains (e, −ν e) carry
+  // τ_xx = E e and τ_yy = 0 exactly, since the Hencky energy is quadratic in the log strains.
+  const double E = 190e9, nu = 0.3;
+  const double K = E / (3.0 * (1.0 - 2.0 * nu)), G = E / (2.0 * (1.0 + nu));
+  const double plane_lambda = mpm::plane_stress_bulk_modulus(K, G) - 2.0 * G / 3.0;
+  EXPECT_NEAR(plane_lambda, E * nu / (1.0 - nu * nu), 1e-12 * E);
+  for (double e : {2e-3, -2e-3, 0.2}) {
+    Mat<2> F = Mat<2>::Zero();
+    F(0, 0) = std::exp(e);
+    F(1, 1) = std::exp(-nu * e);
+    const auto split = mpm::hencky_tensile_split<2>(plane_lambda, G, F);
+    const Mat<2> kirchhoff = F.determinant() * (split.tensile_stress + split.compressive_stress);
+    EXPECT_NEAR(kirchhoff(0, 0), E * e, 1e-9 * E * std::abs(e)) << "e = " << e;
+    EXPECT_NEAR(kirchhoff(1, 1), 0.0, 1e-9 * E * std::abs(e)) << "e = " << e;
+    EXPECT_NEAR(split.tensile_energy + split.compressive_energy, 0.5 * E * e * e, 1e-9 * E * e * e);
+  }
+  // Plane strain (the unmodified λ) would give τ_yy = λ (1 − ν) e − 2G ν e ≠ 0 for the same
+  // strains.
+  const double lambda_3d = K - 2.0 * G / 3.0;
+  EXPECT_GT(std::abs(lambda_3d * (1.0 - nu) - 2.0 * G * nu), 0.1 * E);
+}
+
 TEST(PhaseFieldAnisotropy, StraightCrackEnergiesAreThePapersSurfaceEnergies) {
   // Closed forms: γ_n = 0 gives G_c, γ_n = 1 gives √2 G_c (profile (1 + u) e^(−u)).
   EXPECT_DOUBLE_EQ(mpm::phase_field_straight_crack_energy(0.0), 1.0);

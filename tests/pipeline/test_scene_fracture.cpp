@@ -206,6 +206,30 @@ TEST(SceneFracture, PhaseFieldMaterialAndItsDefaults) {
   EXPECT_TRUE(listed);
 }
 
+TEST(SceneFracture, PlaneStressReplacesTheBulkModulusOfHenckyMaterials) {
+  // E = 70 GPa, ν = 0.22: K = E/(3(1 − 2ν)), G = E/(2(1 + ν)). Plane stress keeps G and makes the
+  // P-wave modulus K* + 4G/3 the plate's E/(1 − ν²) (mpm::plane_stress_bulk_modulus).
+  const double E = 70e9, nu = 0.22;
+  const std::string text = replace(
+      with_material_keys(
+          "damage = \"phase-field\"\nlength_scale = \"1 mm\"\nfracture_energy = \"0.1 N/mm\""),
+      "[[materials]]", "[physics]\nplane = \"stress\"\n\n[[materials]]");
+  const mpm::Problem<2> p = fp::parse_scene(text, "plane-stress.toml");
+  EXPECT_TRUE(p.plane_stress);
+  EXPECT_NEAR(p.materials[0].shear_modulus, E / (2.0 * (1.0 + nu)), 1e-6);
+  EXPECT_NEAR(p.materials[0].bulk_modulus + 4.0 * p.materials[0].shear_modulus / 3.0,
+              E / (1.0 - nu * nu), 1e-12 * E);
+  bool named = false;
+  for (const auto& m : mpm::plan_modules<2>(p))
+    if (m.module == "mechanics") named = m.reason.find("plane stress") != std::string::npos;
+  EXPECT_TRUE(named);
+  // Plane strain, the default, keeps K.
+  const mpm::Problem<2> strain = fp::parse_scene(
+      replace(text, "plane = \"stress\"", "plane = \"strain\""), "plane-strain.toml");
+  EXPECT_FALSE(strain.plane_stress);
+  EXPECT_NEAR(strain.materials[0].bulk_modulus, E / (3.0 * (1.0 - 2.0 * nu)), 1e-6);
+}
+
 TEST(SceneFracture, AnisotropicPhaseFieldNeedsTheBspline) {
   const std::string text = replace(
       with_material_keys(
@@ -692,6 +716,15 @@ std::vector<BadFractureScene> bad_scenes() {
                "max = [\"20 mm\", \"20 mm\"]",
                "max = [\"20 mm\", \"20 mm\"]\nshape_function = \"bspline2\""),
        "anisotropy", "materials[0].anisotropy.gamma_1111", "a non-negative component"},
+      {"plane_unknown",
+       replace(with_material_keys(phase_field), "[[materials]]",
+               "[physics]\nplane = \"membrane\"\n\n[[materials]]"),
+       "membrane", "physics.plane", "expected \"strain\" (default) or \"stress\""},
+      {"plane_stress_neo_hookean",
+       replace(kScene, "[[materials]]", "[physics]\nplane = \"stress\"\n\n[[materials]]"),
+       "plane = ", "physics.plane",
+       "expected every material to be Hencky-elastic for plane = \"stress\" (damage = "
+       "\"phase-field\" or degradation = \"hencky-spectral\"), got material 'glass'"},
       {"anisotropy_with_rankine",
        replace(
            kScene, "damage = \"rankine\"",

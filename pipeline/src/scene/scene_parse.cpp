@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "fragmpm/mpm/run_file.hpp"
+#include "fragmpm/mpm/wave_speed.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/scene_shapes.hpp"
 #include "scene_cracks.hpp"
@@ -164,6 +165,29 @@ mpm::MaterialSpec read_material(const Section& m, std::optional<double> thicknes
   if (!(spec.density > 0.0)) m.expected("density", "a positive density");
   read_damage(m, spec, thickness, grid, particle_spacing);
   return spec;
+}
+
+/// Plane stress (mpm::plane_stress_bulk_modulus): exact for the Hencky energy, which is quadratic
+/// in the log strains; the neo-Hookean energy is not, and the thermal stress and the crushed flow
+/// are written for plane strain, so those are refused at `plane`.
+void apply_plane_stress(mpm::Problem<2>& problem, const Section& physics) {
+  if (problem.thermal.active())
+    physics.fail("plane", "expected plane = \"strain\" in a scene whose thermal module is on (" +
+                              problem.thermal.reason +
+                              "): the thermal stress is written for plane strain");
+  for (mpm::MaterialSpec& m : problem.materials) {
+    if (mpm::elastic_law(m) != mpm::ElasticLaw::hencky)
+      physics.fail("plane",
+                   "expected every material to be Hencky-elastic for plane = \"stress\" "
+                   "(damage = \"phase-field\" or degradation = \"hencky-spectral\"), "
+                   "got material '" +
+                       m.name + "'");
+    if (m.crushed_friction_angle > 0.0)
+      physics.fail("plane",
+                   "expected no crushed_friction_angle for plane = \"stress\" (material '" +
+                       m.name + "'): the crushed flow is written for plane strain");
+    m.bulk_modulus = mpm::plane_stress_bulk_modulus(m.bulk_modulus, m.shear_modulus);
+  }
 }
 
 Shape read_shape(const Section& b) {
@@ -446,8 +470,13 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
   const std::optional<Section> time = top.optional_table("time");
   if (time) read_time(*time, problem.time);
   std::optional<double> thickness;  // out-of-plane thickness, only for Weibull volumes in 2D
-  if (auto physics = top.optional_table("physics")) {
-    physics->allow_only({"gravity", "thickness"});
+  const std::optional<Section> physics = top.optional_table("physics");
+  if (physics) {
+    physics->allow_only({"gravity", "thickness", "plane"});
+    const std::string plane = physics->optional_string("plane").value_or("strain");
+    if (plane != "strain" && plane != "stress")
+      physics->expected("plane", "\"strain\" (default) or \"stress\"");
+    problem.plane_stress = plane == "stress";
     problem.gravity = physics->optional_vector("gravity", QK::acceleration).value_or(Vec2::Zero());
     thickness = physics->optional_quantity("thickness", QK::length);
     if (thickness && !(*thickness > 0.0))
@@ -603,6 +632,8 @@ mpm::Problem<2> parse_scene(const std::string& text, const std::string& path) {
                 problem.thermal.reason +
                 "): the phase field has no damage heating and its tension-compression "
                 "split carries no thermal stress yet");
+
+  if (problem.plane_stress) apply_plane_stress(problem, *physics);
 
   if (time) check_fixed_dt(problem, *time);
   return problem;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -15,6 +16,7 @@
 
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/scene.hpp"
+#include "phase_field_snapshots.hpp"
 #include "verify_run.hpp"
 
 namespace fragmpm::pipeline {
@@ -76,7 +78,8 @@ struct PlateVariant {
   double fracture_energy;  ///< G_c or Ḡ_c [J/m²]
 };
 
-std::vector<VerifyRow> run_plate(const PlateVariant& v) {
+/// `figure_directory`: where the phase field at the paper's time points goes (empty: nowhere).
+std::vector<VerifyRow> run_plate(const PlateVariant& v, const std::string& figure_directory) {
   std::map<std::string, std::string> overrides{{"output.interval", "0.0"}};
   overrides["materials[0].fracture_energy"] = toml_number(v.fracture_energy);
   std::string text = with_overrides(embedded_scene("paper/plate-impact.toml"), overrides);
@@ -86,11 +89,15 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v) {
   mpm::Solver<2> solver(parse_scene(text, "scenes/paper/plate-impact.toml"));
   const double cell = solver.problem().grid.cell_size;
   std::vector<CrackState> history;
+  // [KT19] Fig. 7, 9 and 11 show the phase field at 0, 50, 65 and 80 µs.
+  PhaseFieldSnapshots snapshots = phase_field_snapshots({0.0, 50.0, 65.0, 80.0});
+  take_snapshot(snapshots, solver);
   const TimedRun run =
       run_until(solver, solver.problem().stop.end_time,
                 std::string("plate-impact ") + v.name + " " + cell_label(cell), 1e-6,
                 [&](const mpm::Solver<2>& s) {
                   history.push_back(observe(s));
+                  take_snapshot(snapshots, s);
                   const CrackState& c = history.back();
                   std::fprintf(stderr,
                                "    t = %5.1f us: tip (%.2f, %.2f) mm, %d band(s), "
@@ -98,6 +105,12 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v) {
                                c.time * 1e6, c.tip_x * 1e3, c.tip_y * 1e3, c.bands, c.strain,
                                c.fracture_energy);
                 });
+  if (!figure_directory.empty())
+    write_phase_field_panels(
+        snapshots,
+        (std::filesystem::path(figure_directory) / (std::string(v.name) + "-phase-field.png"))
+            .string(),
+        std::string("Plate under impact, ") + v.name + ", " + cell_label(cell));
   // Start: the first observation with the tip past the notch; branching: the first with two bands.
   const CrackState* start = nullptr;
   const CrackState* branch = nullptr;
@@ -176,7 +189,11 @@ std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options) {
   std::vector<VerifyRow> rows;
   for (const PlateVariant& v : variants) {
     if (options.quick && v.anisotropy) continue;
-    for (auto& r : run_plate(v)) rows.push_back(r);
+    for (auto& r : run_plate(
+             v, options.output_directory.empty()
+                    ? std::string()
+                    : (std::filesystem::path(options.output_directory) / "plate-impact").string()))
+      rows.push_back(r);
   }
   return rows;
 }

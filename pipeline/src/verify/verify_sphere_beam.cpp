@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -26,6 +27,7 @@
 
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/scene.hpp"
+#include "phase_field_snapshots.hpp"
 #include "verify_run.hpp"
 
 namespace fragmpm::pipeline {
@@ -129,9 +131,12 @@ struct BeamVariant {
   double fracture_energy;  ///< G_c or Ḡ_c [J/m²]
   const char* anisotropy;  ///< TOML of the beam's anisotropy, or nullptr (isotropic)
   double crossing_energy;  ///< G_c of a crack crossing along x (normal along y) [J/m²]
+  std::vector<double> figure_times_us;  ///< the paper's phase-field figure of this case
 };
 
-std::vector<VerifyRow> run_beam(const BeamVariant& v, double cell_size, int level) {
+/// `figure_directory`: where the phase field at the paper's time points goes (empty: nowhere).
+std::vector<VerifyRow> run_beam(const BeamVariant& v, double cell_size, int level,
+                                const std::string& figure_directory) {
   std::map<std::string, std::string> overrides{{"output.interval", "0.0"}};
   overrides["grid.cell_size"] = toml_number(cell_size);
   overrides["materials[0].fracture_energy"] = toml_number(v.fracture_energy);
@@ -144,10 +149,13 @@ std::vector<VerifyRow> run_beam(const BeamVariant& v, double cell_size, int leve
   const std::vector<Eigen::Vector2d> reference = problem.particles.x;
   mpm::Solver<2> solver(std::move(problem));
   std::vector<BeamState> history;
+  PhaseFieldSnapshots snapshots = phase_field_snapshots(v.figure_times_us);
+  take_snapshot(snapshots, solver);
   const std::string what = std::string("sphere-beam ") + v.name + " " + cell_label(cell_size);
   const TimedRun run =
       run_until(solver, solver.problem().stop.end_time, what, 1e-6, [&](const mpm::Solver<2>& s) {
         history.push_back(observe(s, reference, spacing));
+        take_snapshot(snapshots, s);
         const BeamState& b = history.back();
         std::fprintf(stderr,
                      "    t = %5.1f us: %d crack(s), widest %.2f mm across at y = %.2f mm "
@@ -155,6 +163,13 @@ std::vector<VerifyRow> run_beam(const BeamVariant& v, double cell_size, int leve
                      b.time * 1e6, b.cracks, b.widest.extent * 1e3, b.widest.mean_y * 1e3,
                      b.widest.angle_deg, b.fracture_energy);
       });
+  if (!figure_directory.empty()) {
+    char stem[64];
+    std::snprintf(stem, sizeof stem, "%s-h%gmm-phase-field.png", v.name, cell_size * 1e3);
+    write_phase_field_panels(
+        snapshots, (std::filesystem::path(figure_directory) / stem).string(),
+        std::string("Sphere-beam impact, ") + v.name + ", " + what.substr(what.rfind("h = ")));
+  }
   const double through = 0.9 * beam_depth;
   const BeamState* end = nullptr;
   for (const BeamState& b : history)
@@ -219,17 +234,23 @@ std::vector<VerifyRow> verify_sphere_beam(const VerifyOptions& options) {
   // along y; in case (iii) the crack leaves the x axis, so its crossing energy is given as the
   // smallest G_c and the row carries no target.
   const BeamVariant variants[] = {
-      {"isotropic", 10606.6, nullptr, 10606.6},
-      {"isotropic-9.75", 9750.0, nullptr, 9750.0},
-      {"orthotropic-45deg", 7500.0,
+      {"isotropic", 10606.6, nullptr, 10606.6, {0, 12, 40, 56, 70, 88}},     // Fig. 24
+      {"isotropic-9.75", 9750.0, nullptr, 9750.0, {0, 30, 40, 68, 72, 78}},  // Fig. 26
+      {"orthotropic-45deg",
+       7500.0,
        "{ gamma_1111 = 80, gamma_2222 = 1, gamma_1122 = 0, gamma_1212 = 74, orientation = \"-45 "
        "deg\" }",
-       10606.6}};
+       10606.6,
+       {0, 12, 28, 40, 70, 80}}};  // Fig. 28
   // The full set starts with case (i) at the paper's cell, the run its energy check is about, and
   // prints each run's rows as soon as it ends (each takes about an hour on 2 cores).
   std::vector<VerifyRow> rows;
   auto add = [&](const BeamVariant& v, double cell_size, int level) {
-    for (auto& r : run_beam(v, cell_size, level)) {
+    const std::string figures =
+        options.output_directory.empty()
+            ? std::string()
+            : (std::filesystem::path(options.output_directory) / "sphere-beam").string();
+    for (auto& r : run_beam(v, cell_size, level, figures)) {
       if (!options.quick)
         std::fprintf(stderr, "    %s h = %g mm: %s = %.4g\n", v.name, cell_size * 1e3,
                      r.metric.c_str(), r.value);

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "fragmpm/analysis/frame_reference.hpp"
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/scene.hpp"
+#include "phase_field_snapshots.hpp"
 #include "verify_run.hpp"
 
 namespace fragmpm::pipeline {
@@ -67,7 +69,11 @@ RingsState observe(const mpm::Solver<2>& solver, const mpm::Particles<2>& first,
   return s;
 }
 
-std::vector<VerifyRow> run_rings(double speed, int paper_pieces, double cell_size, int level) {
+/// `figure_times_us`: the paper's phase-field figure of this speed; `figure_directory`: where it
+/// goes (empty: nowhere).
+std::vector<VerifyRow> run_rings(double speed, int paper_pieces, double cell_size, int level,
+                                 const std::vector<double>& figure_times_us,
+                                 const std::string& figure_directory) {
   const std::string name = speed < 15.0 ? "10m/s" : "20m/s";
   std::map<std::string, std::string> overrides{{"output.interval", "0.0"}};
   overrides["grid.cell_size"] = toml_number(cell_size);
@@ -80,9 +86,17 @@ std::vector<VerifyRow> run_rings(double speed, int paper_pieces, double cell_siz
   for (std::size_t p = 0; p < first.size(); ++p) ring_mass[first.body[p]] += first.mass[p];
   mpm::Solver<2> solver(std::move(problem));
   std::vector<RingsState> history;
+  PhaseFieldSnapshots snapshots = phase_field_snapshots(figure_times_us);
+  take_snapshot(snapshots, solver);
+  // Observed every 5 µs (the figures' time points are multiples of it); fragments counted at every
+  // fifth observation.
+  int observations = 0;
   const TimedRun run = run_until(
       solver, solver.problem().stop.end_time, "two-rings " + name + " " + cell_label(cell_size),
-      25e-6, [&](const mpm::Solver<2>& s) {
+      5e-6, [&](const mpm::Solver<2>& s) {
+        take_snapshot(snapshots, s);
+        const bool at_end = s.time() >= s.problem().stop.end_time * (1.0 - 1e-12);
+        if (++observations % 5 != 0 && !at_end) return;
         history.push_back(observe(s, first, ring_mass));
         const RingsState& r = history.back();
         std::fprintf(stderr,
@@ -91,6 +105,13 @@ std::vector<VerifyRow> run_rings(double speed, int paper_pieces, double cell_siz
                      r.time * 1e6, r.ring[0].pieces, r.ring[1].pieces, r.ring[0].fragments,
                      r.ring[1].fragments, r.fracture_energy);
       });
+  if (!figure_directory.empty()) {
+    char stem[64];
+    std::snprintf(stem, sizeof stem, "%s-h%gmm-phase-field.png", name == "10m/s" ? "10ms" : "20ms",
+                  cell_size * 1e3);
+    write_phase_field_panels(snapshots, (std::filesystem::path(figure_directory) / stem).string(),
+                             "Two rings at " + name + ", " + cell_label(cell_size));
+  }
   const RingsState& last = history.back();
   // When the crack energy stopped growing: the first observation within 2 % of the final value.
   double settled = last.time;
@@ -127,9 +148,17 @@ std::vector<VerifyRow> verify_two_rings(const VerifyOptions& options) {
   // Quick: h = l₀ = 1 mm; the paper's h = 0.5 mm (l₀ = 1 mm) is the full level.
   std::vector<VerifyRow> rows;
   const double cells[] = {1e-3, 0.5e-3};
-  for (int level = 0; level < (options.quick ? 1 : 2); ++level)
-    for (const auto& [speed, pieces] : {std::pair{10.0, 2}, std::pair{20.0, 5}})
-      for (auto& r : run_rings(speed, pieces, cells[level], level)) rows.push_back(r);
+  const std::string figures =
+      options.output_directory.empty()
+          ? std::string()
+          : (std::filesystem::path(options.output_directory) / "two-rings").string();
+  // [KT19] Fig. 18 (10 m/s) and Fig. 20 (20 m/s) show the phase field at these times [µs].
+  const std::vector<double> slow_times{0, 75, 95, 200, 400, 625};
+  const std::vector<double> fast_times{0, 30, 45, 60, 400, 625};
+  for (int level = 0; level < (options.quick ? 1 : 2); ++level) {
+    for (auto& r : run_rings(10.0, 2, cells[level], level, slow_times, figures)) rows.push_back(r);
+    for (auto& r : run_rings(20.0, 5, cells[level], level, fast_times, figures)) rows.push_back(r);
+  }
   return rows;
 }
 

@@ -77,6 +77,19 @@ inline double characteristic_length(const MaterialSpec& material, double referen
   return std::sqrt(double(D)) * cell_size;
 }
 
+/// The bulk modulus K* that turns the 2D Hencky energy ψ = ½λ(tr ε)² + μ Σ εᵢ² into its
+/// plane-stress form. With τ_zz = λ tr ε + 2μ ε_zz = 0 the out-of-plane log strain is ε_zz = −λ (ε₁
+/// + ε₂)/(λ + 2μ), and eliminating it leaves ψ = ½λ*(ε₁ + ε₂)² + μ(ε₁² + ε₂²) with λ* = 2λμ/(λ +
+/// 2μ), exactly, since ψ is quadratic in the log strains. A 2D Hencky material with K* = λ* + 2μ/3
+/// in place of K is therefore the plane-stress material: uniaxial stress gives Young's modulus E
+/// and lateral strain −ν, and its P-wave modulus λ* + 2μ is the plate's E/(1 − ν²). The
+/// tension–compression split ([KT19] eq. (14)) then acts on the in-plane strains ε₁, ε₂ with λ*.
+inline double plane_stress_bulk_modulus(double bulk_modulus, double shear_modulus) {
+  const double lambda = bulk_modulus - 2.0 * shear_modulus / 3.0;
+  const double plane_lambda = 2.0 * lambda * shear_modulus / (lambda + 2.0 * shear_modulus);
+  return plane_lambda + 2.0 * shear_modulus / 3.0;
+}
+
 /// contact: one-sided, frictional (Coulomb μ = friction); roller: bilateral normal constraint, free
 /// tangentially; fixed: the material moves with the wall; penalty: one-sided and frictionless, a
 /// particle force κ_n × (the part of the particle's domain behind the plane) ([XLS21] eq. (83),
@@ -221,6 +234,9 @@ struct Problem {
   StopSpec stop;
   OutputSpec output;
   Vec<D> gravity = Vec<D>::Zero();  ///< [m/s^2]
+  /// 2D only: the bodies are thin plates, σ_zz = 0, instead of plane strain (ε_zz = 0). The scene
+  /// compiler has then replaced each (Hencky) material's bulk modulus by plane_stress_bulk_modulus.
+  bool plane_stress = false;
   std::vector<MaterialSpec> materials;
   std::vector<WallSpec<D>> walls;
   ContactSpec<D> contact;
