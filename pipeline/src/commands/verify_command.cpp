@@ -31,15 +31,15 @@ const std::vector<VerifyCase>& verify_cases() {
        verify_phase_field_bar},
       {"plate-impact",
        "KT19 5.1 plate under impact, phase field at h = 0.25 mm: crack start, speed vs Rayleigh, "
-       "branching; isotropic and cubic",
+       "branching; isotropic, cubic and orthotropic; phase-field figures at the paper's times",
        verify_plate_impact},
       {"sphere-beam",
        "KT19 5.3 disk striking a free beam, phase field: crack energy while the median crack "
-       "crosses vs G_c x depth; three surface energies at the paper's h",
+       "crosses vs G_c x depth; three surface energies at the paper's h; phase-field figures",
        verify_sphere_beam},
       {"two-rings",
        "KT19 5.2 two phase-field rings colliding at 10 and 20 m/s: pieces per ring vs the paper's "
-       "2 and 5",
+       "2 and 5; phase-field figures at the paper's times",
        verify_two_rings},
       {"kalthoff", "P1 Kalthoff-Winkler plate: crack angle and crack speed", verify_kalthoff},
       {"brazilian",
