@@ -15,6 +15,7 @@
 
 #include "fragmpm/mpm/damage_law.hpp"
 #include "fragmpm/mpm/solver.hpp"
+#include "fragmpm/mpm/wave_speed.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 
 namespace fp = fragmpm::pipeline;
@@ -223,6 +224,15 @@ TEST(SceneFracture, PlaneStressReplacesTheBulkModulusOfHenckyMaterials) {
   for (const auto& m : mpm::plan_modules<2>(p))
     if (m.module == "mechanics") named = m.reason.find("plane stress") != std::string::npos;
   EXPECT_TRUE(named);
+  // An elastic material (the struck body of a phase-field scene) becomes Hencky-elastic with the
+  // same reduction.
+  const mpm::Problem<2> elastic =
+      fp::parse_scene(replace(with_material_keys("damage = \"none\""), "[[materials]]",
+                              "[physics]\nplane = \"stress\"\n\n[[materials]]"),
+                      "elastic.toml");
+  EXPECT_EQ(mpm::elastic_law(elastic.materials[0]), mpm::ElasticLaw::hencky);
+  EXPECT_NEAR(elastic.materials[0].bulk_modulus + 4.0 * elastic.materials[0].shear_modulus / 3.0,
+              E / (1.0 - nu * nu), 1e-12 * E);
   // Plane strain, the default, keeps K.
   const mpm::Problem<2> strain = fp::parse_scene(
       replace(text, "plane = \"stress\"", "plane = \"strain\""), "plane-strain.toml");
@@ -723,7 +733,7 @@ std::vector<BadFractureScene> bad_scenes() {
       {"plane_stress_neo_hookean",
        replace(kScene, "[[materials]]", "[physics]\nplane = \"stress\"\n\n[[materials]]"),
        "plane = ", "physics.plane",
-       "expected every material to be Hencky-elastic for plane = \"stress\" (damage = "
+       "expected every damaging material to be Hencky-elastic for plane = \"stress\" (damage = "
        "\"phase-field\" or degradation = \"hencky-spectral\"), got material 'glass'"},
       {"anisotropy_with_rankine",
        replace(

@@ -168,17 +168,20 @@ mpm::MaterialSpec read_material(const Section& m, std::optional<double> thicknes
 }
 
 /// Plane stress (mpm::plane_stress_bulk_modulus): exact for the Hencky energy, which is quadratic
-/// in the log strains; the neo-Hookean energy is not, and the thermal stress and the crushed flow
-/// are written for plane strain, so those are refused at `plane`.
+/// in the log strains; the neo-Hookean energy is not, so damaging neo-Hookean materials are
+/// refused at `plane`, as are the thermal stress and the crushed flow, written for plane strain.
 void apply_plane_stress(mpm::Problem<2>& problem, const Section& physics) {
   if (problem.thermal.active())
     physics.fail("plane", "expected plane = \"strain\" in a scene whose thermal module is on (" +
                               problem.thermal.reason +
                               "): the thermal stress is written for plane strain");
   for (mpm::MaterialSpec& m : problem.materials) {
+    // An elastic material (no damage law) is Hencky-elastic in plane stress: the two energies
+    // agree to second order in the strain, and the Hencky one reduces exactly.
+    if (!m.damages()) m.degradation = mpm::Degradation::hencky_spectral;
     if (mpm::elastic_law(m) != mpm::ElasticLaw::hencky)
       physics.fail("plane",
-                   "expected every material to be Hencky-elastic for plane = \"stress\" "
+                   "expected every damaging material to be Hencky-elastic for plane = \"stress\" "
                    "(damage = \"phase-field\" or degradation = \"hencky-spectral\"), "
                    "got material '" +
                        m.name + "'");
