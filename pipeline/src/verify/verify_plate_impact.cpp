@@ -189,11 +189,7 @@ std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options) {
   std::vector<VerifyRow> rows;
   for (const PlateVariant& v : variants) {
     if (options.quick && v.anisotropy) continue;
-    for (auto& r : run_plate(
-             v, options.output_directory.empty()
-                    ? std::string()
-                    : (std::filesystem::path(options.output_directory) / "plate-impact").string()))
-      rows.push_back(r);
+    for (auto& r : run_plate(v, case_directory(options, "plate-impact"))) rows.push_back(r);
   }
   return rows;
 }

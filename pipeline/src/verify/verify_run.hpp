@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,13 @@
 #include "fragmpm/pipeline/verify.hpp"
 
 namespace fragmpm::pipeline {
+
+/// DIR/`case_name` for a case's figures, or empty when the options write no files.
+inline std::string case_directory(const VerifyOptions& options, const std::string& case_name) {
+  return options.output_directory.empty()
+             ? std::string()
+             : (std::filesystem::path(options.output_directory) / case_name).string();
+}
 
 /// "h = 5 mm"-style label of a level for progress lines.
 inline std::string cell_label(double cell_size) {

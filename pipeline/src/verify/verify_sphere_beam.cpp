@@ -247,10 +247,7 @@ std::vector<VerifyRow> verify_sphere_beam(const VerifyOptions& options) {
   // ends (each run at the paper's cell takes about an hour on 2 cores).
   std::vector<VerifyRow> rows;
   auto add = [&](const BeamVariant& v, double cell_size, int level) {
-    const std::string figures =
-        options.output_directory.empty()
-            ? std::string()
-            : (std::filesystem::path(options.output_directory) / "sphere-beam").string();
+    const std::string figures = case_directory(options, "sphere-beam");
     for (auto& r : run_beam(v, cell_size, level, figures)) {
       if (!options.quick)
         std::fprintf(stderr, "    %s h = %g mm: %s = %.4g\n", v.name, cell_size * 1e3,

@@ -148,10 +148,7 @@ std::vector<VerifyRow> verify_two_rings(const VerifyOptions& options) {
   // Quick: h = l₀ = 1 mm; the paper's h = 0.5 mm (l₀ = 1 mm) is the full level.
   std::vector<VerifyRow> rows;
   const double cells[] = {1e-3, 0.5e-3};
-  const std::string figures =
-      options.output_directory.empty()
-          ? std::string()
-          : (std::filesystem::path(options.output_directory) / "two-rings").string();
+  const std::string figures = case_directory(options, "two-rings");
   // [KT19] Fig. 18 (10 m/s) and Fig. 20 (20 m/s) show the phase field at these times [µs].
   const std::vector<double> slow_times{0, 75, 95, 200, 400, 625};
   const std::vector<double> fast_times{0, 30, 45, 60, 400, 625};
