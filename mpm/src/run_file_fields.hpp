@@ -52,8 +52,12 @@ FieldInfo field_info(const std::string& name) {
     return {plane ? "m^2 (per unit thickness)" : "m^3", "initial volume, N", K::scalar, N::float64};
   if (name == "mass")
     return {plane ? "kg/m (per unit thickness)" : "kg", "mass, N", K::scalar, N::float64};
-  if (name == "r1") return {"m", "CPDI domain edge vector r1, N x D", K::vector, N::float64};
-  if (name == "r2") return {"m", "CPDI domain edge vector r2, N x D", K::vector, N::float64};
+  if (name == "r1")
+    return {"m", "current domain edge vector r1 (F times the initial edge unless CPDI), N x D",
+            K::vector, N::float64};
+  if (name == "r2")
+    return {"m", "current domain edge vector r2 (F times the initial edge unless CPDI), N x D",
+            K::vector, N::float64};
   if (name == "stress")
     return {"Pa", "Cauchy stress, N x D x D, stress[p][i][j] = sigma_ij", K::tensor, N::float64};
   if (name == "damage") return {"1", "damage d in [0, 1], N", K::scalar, N::float64};

@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "fragmpm/mpm/current_domain.hpp"
 #include "fragmpm/mpm/shape_functions.hpp"
 #include "fragmpm/mpm/solver.hpp"
 #include "fragmpm/pipeline/scene.hpp"
@@ -177,5 +178,37 @@ TEST(Apic, ResultsIndependentOfThreadCount) {
     ASSERT_EQ(one.v[p], two.v[p]);
     ASSERT_EQ(one.affine[p], two.affine[p]);
     ASSERT_EQ(one.stress[p], two.stress[p]);
+  }
+}
+
+// A disk spun rigidly to ω t = 0.02 rad: every particle's current domain (what frames and figures
+// draw) has turned with it, whichever kernel ran. CPDI turns its stored domain; the B-spline and
+// uGIMP kernels keep the initial square, which F maps. Drawn unturned, the squares of a turned
+// piece overlap and leave gaps.
+TEST(Apic, CurrentDomainsTurnWithASpinningDisk) {
+  const double omega = 2000.0, angle = 0.02;
+  for (const std::string shape : {"cpdi", "bspline2", "ugimp"}) {
+    mpm::Solver<2> solver(spinning_disk("apic", shape));
+    while (solver.time() < angle / omega) {
+      const auto failure = solver.step();
+      ASSERT_FALSE(failure) << shape << ": " << failure->what;
+    }
+    const double turned = omega * solver.time();
+    const mpm::ShapeFunctionKind kind = solver.problem().grid.shape_function;
+    const mpm::Particles<2> drawn = mpm::with_current_domains<2>(solver.particles(), kind);
+    double largest_error = 0.0, area = 0.0;
+    for (std::size_t p = 0; p < drawn.size(); ++p) {
+      const Vec<2> edge = drawn.domain[p].col(0);
+      largest_error = std::max(largest_error, std::abs(std::atan2(edge.y(), edge.x()) - turned));
+      area += std::abs(drawn.domain[p].determinant());
+    }
+    EXPECT_LT(largest_error, 1e-3 * turned) << shape;
+    double initial_area = 0.0;
+    for (const double v : solver.particles().volume0) initial_area += v;
+    EXPECT_NEAR(area, initial_area, 1e-3 * initial_area) << shape;
+    if (kind != mpm::ShapeFunctionKind::cpdi) {
+      const Vec<2> stored = solver.particles().domain[0].col(0);
+      EXPECT_NEAR(std::atan2(stored.y(), stored.x()), 0.0, 1e-12) << shape;
+    }
   }
 }

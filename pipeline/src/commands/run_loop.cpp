@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "fragmpm/mpm/current_domain.hpp"
+
 namespace fragmpm::pipeline {
 
 namespace {
@@ -66,7 +68,14 @@ RunLoopResult run_loop(mpm::Solver<2>& solver, mpm::RunFile<2>& file,
     file.flush();
   };
   auto write_frame = [&] {
-    file.write_frame(solver.step_count(), solver.time(), solver.particles(), fields);
+    // A frame holds each particle's current domain (current_domain.hpp); the checkpoint keeps the
+    // solver's own.
+    const mpm::ShapeFunctionKind kind = solver.problem().grid.shape_function;
+    if (kind == mpm::ShapeFunctionKind::cpdi)
+      file.write_frame(solver.step_count(), solver.time(), solver.particles(), fields);
+    else
+      file.write_frame(solver.step_count(), solver.time(),
+                       mpm::with_current_domains<2>(solver.particles(), kind), fields);
     ++result.frames;
     checkpoint();
   };

@@ -9,6 +9,7 @@
 #include "fragmpm/analysis/frame_figure.hpp"
 #include "fragmpm/analysis/particle_figure.hpp"
 #include "fragmpm/analysis/png_file.hpp"
+#include "fragmpm/mpm/current_domain.hpp"
 
 namespace fragmpm::pipeline {
 
@@ -21,7 +22,8 @@ PhaseFieldSnapshots phase_field_snapshots(const std::vector<double>& wanted_us) 
 void take_snapshot(PhaseFieldSnapshots& snapshots, const mpm::Solver<2>& solver) {
   const std::size_t next = snapshots.frames.size();
   if (next >= snapshots.wanted.size() || solver.time() < snapshots.wanted[next] - 1e-9) return;
-  snapshots.frames.push_back(solver.particles());
+  snapshots.frames.push_back(
+      mpm::with_current_domains<2>(solver.particles(), solver.problem().grid.shape_function));
   snapshots.times.push_back(solver.time());
 }
 

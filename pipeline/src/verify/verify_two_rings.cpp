@@ -20,6 +20,7 @@
 
 #include "fragmpm/analysis/frame_fragments.hpp"
 #include "fragmpm/analysis/frame_reference.hpp"
+#include "fragmpm/mpm/current_domain.hpp"
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "phase_field_snapshots.hpp"
@@ -58,7 +59,9 @@ RingsState observe(const mpm::Solver<2>& solver, const mpm::Particles<2>& first,
   const analysis::FrameReference matched = analysis::frame_reference(first, solver.particles());
   for (int body = 0; body < 2; ++body) {
     const mpm::Particles<2> reference = body_rows(matched.particles, body);
-    const mpm::Particles<2> current = body_rows(solver.particles(), body);
+    const mpm::Particles<2> current = body_rows(
+        mpm::with_current_domains<2>(solver.particles(), solver.problem().grid.shape_function),
+        body);
     const analysis::FrameFragments frame =
         analysis::analyze_fragments(reference, current, analysis::FragmentOptions{}, false);
     for (const auto& f : frame.fragments) {
