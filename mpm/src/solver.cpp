@@ -11,6 +11,7 @@
 
 #include "fragmpm/mpm/thermal.hpp"
 #include "step/affine_motion.hpp"
+#include "step/failure_text.hpp"
 #include "step/constitutive_update.hpp"
 #include "step/stages.hpp"
 
@@ -268,7 +269,7 @@ struct Solver<D>::Impl {
         std::min(s.problem.time.fixed_dt > 0.0 ? s.problem.time.fixed_dt : s.next_dt_limit, dt_cap);
     if (!(dt > 0.0) || !std::isfinite(dt)) {
       NumericalFailure failure{s.step, s.time, -1,
-                               "time step is not positive and finite (dt = " + std::to_string(dt) +
+                               "time step is not positive and finite (dt = " + format_number(dt) +
                                    " s): the particles have no finite wave speed"};
       return failure;
     }

@@ -7,6 +7,14 @@
 
 namespace fragmpm::mpm {
 
+/// A scalar with six significant digits (std::to_string prints a 1e-8 s step as 0.000000).
+inline std::string format_number(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
 template <int D>
 std::string format_vector(const Vec<D>& v) {
   std::ostringstream out;

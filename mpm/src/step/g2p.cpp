@@ -32,9 +32,9 @@ NumericalFailure inverted_particle(const StepState<D>& state, std::int64_t p, do
   failure.what = "particle " + std::to_string(p) + " (body " + std::to_string(P.body[p]) +
                  ", material '" + state.problem.materials[P.material[p]].name + "', damage " +
                  std::to_string(P.damage[p]) +
-                 ") became inverted or non-finite: J = " + std::to_string(P.F[p].determinant()) +
+                 ") became inverted or non-finite: J = " + format_number(P.F[p].determinant()) +
                  ", F = " + format_matrix<D>(P.F[p]) + ", x = " + format_vector<D>(P.x[p]) +
-                 " m, v = " + format_vector<D>(P.v[p]) + " m/s, dt = " + std::to_string(dt) + " s";
+                 " m, v = " + format_vector<D>(P.v[p]) + " m/s, dt = " + format_number(dt) + " s";
   return failure;
 }
 
