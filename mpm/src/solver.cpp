@@ -11,8 +11,8 @@
 
 #include "fragmpm/mpm/thermal.hpp"
 #include "step/affine_motion.hpp"
-#include "step/failure_text.hpp"
 #include "step/constitutive_update.hpp"
+#include "step/failure_text.hpp"
 #include "step/stages.hpp"
 
 namespace fragmpm::mpm {
