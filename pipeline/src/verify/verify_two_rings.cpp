@@ -57,11 +57,11 @@ RingsState observe(const mpm::Solver<2>& solver, const mpm::Particles<2>& first,
   s.time = solver.time();
   s.fracture_energy = solver.accumulators().fracture_energy;
   const analysis::FrameReference matched = analysis::frame_reference(first, solver.particles());
+  const mpm::Particles<2> drawn =
+      mpm::with_current_domains<2>(solver.particles(), solver.problem().grid.shape_function);
   for (int body = 0; body < 2; ++body) {
     const mpm::Particles<2> reference = body_rows(matched.particles, body);
-    const mpm::Particles<2> current = body_rows(
-        mpm::with_current_domains<2>(solver.particles(), solver.problem().grid.shape_function),
-        body);
+    const mpm::Particles<2> current = body_rows(drawn, body);
     const analysis::FrameFragments frame =
         analysis::analyze_fragments(reference, current, analysis::FragmentOptions{}, false);
     for (const auto& f : frame.fragments) {
