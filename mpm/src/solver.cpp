@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "fragmpm/mpm/thermal.hpp"
+#include "fragmpm/mpm/wave_speed.hpp"
 #include "step/affine_motion.hpp"
 #include "step/constitutive_update.hpp"
 #include "step/failure_text.hpp"
@@ -76,6 +77,8 @@ struct Solver<D>::Impl {
         throw std::invalid_argument("material '" + m.name +
                                     "': crushed_friction_angle needs a damage law with "
                                     "degradation = \"hencky-spectral\"");
+      s.material_failed_fluid.push_back(
+          m.damages() && !phase_field && kept_shear_fraction(m.degradation, 1.0) == 0.0 ? 1 : 0);
       s.crushed_sine.push_back(m.crushed_friction_angle > 0.0 ? std::sin(m.crushed_friction_angle)
                                                               : 0.0);
       s.departure_speed_limit = std::max(

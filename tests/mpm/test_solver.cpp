@@ -349,3 +349,40 @@ TEST(Solver, CrushedFlowHeatsByItsPlasticWork) {
   ASSERT_GT(row.totals.flow_dissipation, 0.0);
   EXPECT_NEAR(row.thermal, row.totals.flow_dissipation, 1e-9 * row.totals.flow_dissipation);
 }
+
+TEST(Solver, FailedFluidParticlesKeepSquareDomainsOfTheirVolumeInShear) {
+  // A block failed throughout (d = 1) with the volumetric-deviatoric split keeps no deviatoric
+  // stress: its particles are a fluid whose stress depends on J alone. Sheared at a uniform rate
+  // to γ = 2 (an isochoric affine flow the CPDI transfer carries exactly), each CPDI domain must
+  // stay a square of the particle's own volume V₀ J. Following F instead, it would be the
+  // parallelogram F·(s × s) with a diagonal √10 s longer than the cell (2 s), and the one-cell
+  // limit would cut its area to 0.4 V₀.
+  std::string text = block_scene;
+  text.replace(text.find("\"1 mm\""), 6, "\"0.5 mm\"");
+  const std::string drift = "velocity = [\"3 m/s\", \"-2 m/s\"]";
+  text.replace(text.find(drift), drift.size(), "");
+  text.replace(text.find("nu = 0.3"), 8,
+               "nu = 0.3\ndamage = \"time-to-failure\"\nstrength = \"1 GPa\"\ncrack_speed = \"1 "
+               "km/s\"\ndegradation = \"volumetric-deviatoric\"\n");
+  text.replace(text.find("max_steps = 100"), 15, "max_steps = 100000");
+  text += "[contact]\npartitioning = \"off\"\n";
+  auto problem = pipeline::parse_scene(text, "failed-fluid-block.toml");
+  const double shear_rate = 2e5, duration = 1e-5;  // γ = 2
+  for (std::size_t p = 0; p < problem.particles.size(); ++p) {
+    problem.particles.damage[p] = 1.0;
+    problem.particles.v[p] = Vec<2>(shear_rate * (problem.particles.x[p][1] - 0.003), 0.0);
+  }
+  mpm::Solver<2> solver(std::move(problem));
+  while (solver.time() < duration) ASSERT_FALSE(solver.step());
+  const auto& P = solver.particles();
+  double largest_shear = 0.0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    largest_shear = std::max(largest_shear, std::abs(P.F[p](0, 1)));
+    const mpm::Mat<2>& r = P.domain[p];
+    const double volume = P.volume0[p] * P.F[p].determinant();
+    ASSERT_NEAR(r.determinant(), volume, 1e-9 * volume) << "particle " << p;
+    EXPECT_NEAR(r.col(0).dot(r.col(1)), 0.0, 1e-12 * volume);
+    EXPECT_NEAR(r.col(0).norm(), r.col(1).norm(), 1e-9 * r.col(0).norm());
+  }
+  EXPECT_GT(largest_shear, 1.5);  // the flow did shear the block
+}

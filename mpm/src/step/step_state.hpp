@@ -115,6 +115,9 @@ struct StepState {
   std::vector<char> material_damages;
   /// Per material: the Rankine law runs on the nonlocal σ̄₁ (RankineSoftening::nonlocal).
   std::vector<char> material_nonlocal;
+  /// Per material: its failed particles (d = 1) keep no deviatoric stress, so their stress depends
+  /// on J alone and their CPDI domain is kept square (failed_domain.hpp).
+  std::vector<char> material_failed_fluid;
   bool nonlocal_damage = false;  ///< some material is nonlocal: G2P defers its constitutive update
   /// Per material: sin φ of the friction angle its failed particles flow at (crushed_flow.hpp), 0
   /// when they keep ψ⁻ without a bound. Any nonzero entry makes Particles::plastic_inverse exist.
