@@ -105,6 +105,30 @@ std::vector<VerifyRow> verify_notched_bar(const VerifyOptions& options) {
           rows.push_back(std::move(r));
   // [HH17] Table III's l_ch = 1.414 mm at the paper's 1 mm grid, for comparison with the paper.
   for (auto& r : run_level(0, cells[0], "auto", true, "local")) rows.push_back(std::move(r));
+  // The third level of the default law, partitioned: whether its dissipation converges under
+  // refinement (the run costs about eight times one at h = 0.5 mm).
+  if (!options.quick)
+    for (auto& r : run_level(2, 0.25e-3, "auto", false, "local")) rows.push_back(std::move(r));
+  // The default's dissipation per crack length, G_f-normalised, must agree between h = 1 and
+  // 0.5 mm within 10 %: a regularised law dissipates the same energy at every resolution.
+  if (!options.quick) {
+    const VerifyRow* level_row_of[2] = {nullptr, nullptr};
+    for (const VerifyRow& r : rows)
+      if (r.variant == "partitioned" && r.level < 2 && r.metric.rfind("damage_dissipation", 0) == 0)
+        level_row_of[r.level] = &r;
+    if (level_row_of[0] && level_row_of[1]) {
+      VerifyRow agreement = *level_row_of[1];
+      const double coarse = level_row_of[0]->value / level_row_of[0]->reference;
+      const double fine = level_row_of[1]->value / level_row_of[1]->reference;
+      agreement.metric = "dissipation_per_G_f_crack_1mm/0.5mm";
+      agreement.value = coarse / fine;
+      agreement.reference = 1.0;
+      agreement.error = relative_error(agreement.value, 1.0);
+      agreement.target_low = 0.9;
+      agreement.target_high = 1.1;
+      rows.push_back(agreement);
+    }
+  }
   return rows;
 }
 
