@@ -282,16 +282,23 @@ namespace {
 /// The free block of the vibration test (h = 0.5 mm, ν = 0) failed throughout (d = 1) before it
 /// starts, flowing at φ = 30°, one field, in its longitudinal mode v_x = 10 m/s cos(πx/L).
 /// `material_keys` are added to the material (the thermal test's heat capacity).
-mpm::Problem<2> failed_block(const std::string& material_keys = "") {
+/// The block scene at h = 0.5 mm without its drift, one field, its material's `nu = 0.3` line
+/// replaced by `material_lines` (a damage law and what it needs).
+std::string undrifted_block_scene(const std::string& material_lines) {
   std::string text = block_scene;
   text.replace(text.find("\"1 mm\""), 6, "\"0.5 mm\"");
   const std::string drift = "velocity = [\"3 m/s\", \"-2 m/s\"]";
   text.replace(text.find(drift), drift.size(), "");
-  text.replace(text.find("nu = 0.3"), 8,
-               "nu = 0.0\ndamage = \"time-to-failure\"\nstrength = \"1 GPa\"\ncrack_speed = \"1 "
-               "km/s\"\ndegradation = \"hencky-spectral\"\ncrushed_friction_angle = \"30 deg\"\n" +
-                   material_keys);
+  text.replace(text.find("nu = 0.3"), 8, material_lines);
   text += "[contact]\npartitioning = \"off\"\n";
+  return text;
+}
+
+mpm::Problem<2> failed_block(const std::string& material_keys = "") {
+  const std::string text = undrifted_block_scene(
+      "nu = 0.0\ndamage = \"time-to-failure\"\nstrength = \"1 GPa\"\ncrack_speed = \"1 "
+      "km/s\"\ndegradation = \"hencky-spectral\"\ncrushed_friction_angle = \"30 deg\"\n" +
+      material_keys);
   auto problem = pipeline::parse_scene(text, "failed-block.toml");
   for (std::size_t p = 0; p < problem.particles.size(); ++p) {
     problem.particles.damage[p] = 1.0;
@@ -357,15 +364,10 @@ TEST(Solver, FailedFluidParticlesKeepSquareDomainsOfTheirVolumeInShear) {
   // stay a square of the particle's own volume V₀ J. Following F instead, it would be the
   // parallelogram F·(s × s) with a diagonal √10 s longer than the cell (2 s), and the one-cell
   // limit would cut its area to 0.4 V₀.
-  std::string text = block_scene;
-  text.replace(text.find("\"1 mm\""), 6, "\"0.5 mm\"");
-  const std::string drift = "velocity = [\"3 m/s\", \"-2 m/s\"]";
-  text.replace(text.find(drift), drift.size(), "");
-  text.replace(text.find("nu = 0.3"), 8,
-               "nu = 0.3\ndamage = \"time-to-failure\"\nstrength = \"1 GPa\"\ncrack_speed = \"1 "
-               "km/s\"\ndegradation = \"volumetric-deviatoric\"\n");
+  std::string text = undrifted_block_scene(
+      "nu = 0.3\ndamage = \"time-to-failure\"\nstrength = \"1 GPa\"\ncrack_speed = \"1 "
+      "km/s\"\ndegradation = \"volumetric-deviatoric\"\n");
   text.replace(text.find("max_steps = 100"), 15, "max_steps = 100000");
-  text += "[contact]\npartitioning = \"off\"\n";
   auto problem = pipeline::parse_scene(text, "failed-fluid-block.toml");
   const double shear_rate = 2e5, duration = 1e-5;  // γ = 2
   for (std::size_t p = 0; p < problem.particles.size(); ++p) {
