@@ -37,4 +37,12 @@ Mat<D> fluid_domain(double volume) {
   return std::pow(volume, 1.0 / D) * Mat<D>::Identity();
 }
 
+/// The CPDI domain of a failed particle after its update: the square of its current `volume` if
+/// its material makes it a fluid, then kept within one cell.
+template <int D>
+void settle_failed_domain(Mat<D>& domain, double volume, bool fluid, double cell_size) {
+  if (fluid) domain = fluid_domain<D>(volume);
+  limit_failed_domain<D>(domain, cell_size);
+}
+
 }  // namespace fragmpm::mpm

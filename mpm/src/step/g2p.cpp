@@ -113,11 +113,10 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
         dissipated += P.volume0[p] * energy.dissipated;
         flowed += P.volume0[p] * energy.flowed;
         if constexpr (deform_domain)
-          if (P.damage[p] >= 1.0) {
-            if (state.material_failed_fluid[static_cast<std::size_t>(P.material[p])])
-              P.domain[p] = fluid_domain<D>(P.volume0[p] * J);
-            limit_failed_domain<D>(P.domain[p], cell_size);
-          }
+          if (P.damage[p] >= 1.0)
+            settle_failed_domain<D>(
+                P.domain[p], P.volume0[p] * J,
+                state.material_failed_fluid[static_cast<std::size_t>(P.material[p])], cell_size);
       }
       kinetic += 0.5 * P.mass[p] * P.v[p].squaredNorm();
       angular_momentum += P.mass[p] * cross<D>(P.x[p], P.v[p]);

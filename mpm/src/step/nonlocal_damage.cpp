@@ -68,11 +68,10 @@ ConstitutiveSums nonlocal_constitutive_update(StepState<D>& state, double dt, bo
     stored += P.volume0[p] * energy.stored;
     dissipated += P.volume0[p] * energy.dissipated;
     flowed += P.volume0[p] * energy.flowed;
-    if (limit_domains && P.damage[p] >= 1.0) {
-      if (state.material_failed_fluid[static_cast<std::size_t>(P.material[p])])
-        P.domain[p] = fluid_domain<D>(P.volume0[p] * P.F[p].determinant());
-      limit_failed_domain<D>(P.domain[p], cell_size);
-    }
+    if (limit_domains && P.damage[p] >= 1.0)
+      settle_failed_domain<D>(P.domain[p], P.volume0[p] * P.F[p].determinant(),
+                              state.material_failed_fluid[static_cast<std::size_t>(P.material[p])],
+                              cell_size);
   }
   return {stored, dissipated, flowed};
 }
