@@ -137,6 +137,30 @@ ContactExchange<D> exchange_momentum(const ContactNode<D>& node, const FrictionL
   out.momentum_change_a = d_n * node.normal + s * t_hat;
   out.slip_speed = (d_t - s) / m_red;  // [NBS18] eq. (21)
 
+  if (order == FrictionWorkOrder::lumped_slip) {
+    // The step's energy identity (contact_energy.cpp) at a node where the exchange adds the
+    // impulse J to field a and −J to b: with l the lumped velocities and b = Δt f/m the force
+    // increments, kinetic + strain − external work changes by
+    //   J·(l_a − l_b) + |J|²/(2 m_red) − ½ Σ_f m_f |b_f|²,
+    // the same for FLIP and APIC. J = J_n n + s t̂ with n ⊥ t̂ gives the tangential part
+    //   −s w₀ + s²/(2 m_red),  w₀ = (l_b − l_a)·t̂,
+    // w₀ the slip of the lumped velocities (the mass-weighted mean velocities of the particles at
+    // the node) against the friction impulse. Friction takes s w₀: the friction impulse on the
+    // slip the material brings. The s²/(2 m_red) stays with the explicit error ½ m_red |Δb_t|²,
+    // which it cancels exactly at a node sliding at constant speed (Δb_t = s/m_red), in the
+    // remainder that contact_energy.cpp books as contact loss. Unlike [NBS18] eq. (27) and
+    // (34)-(36), s w₀ reads no force increment: a light node, whose trial velocity a force can
+    // push to many times the material's speed, books no friction for that speed, and at the
+    // corners of a confined press the friction no longer depends on Δt (docs/design.md §2.4).
+    // After another wall or contact changed the node this step, v − Δt f/m carries that change,
+    // which is what the identity needs for exchanges applied one after another. A slip that the
+    // force reversed within the step (w₀ < 0) books none.
+    const Vec<D> lumped_a = node.velocity_a - dt * node.force_a / node.mass_a;
+    const Vec<D> lumped_b =
+        rigid_b ? node.velocity_b : Vec<D>(node.velocity_b - dt * node.force_b / node.mass_b);
+    out.friction_work = std::max(0.0, s * (lumped_b - lumped_a).dot(t_hat));
+    return out;
+  }
   // Friction work. First order ([NBS18] eq. (27)): W₁ = s (d_t − s)/m_red, the sliding impulse
   // times the final slip speed. Second order (eq. (31)-(36)): the relative slip velocity varies
   // linearly over the step, v(t) = (d_t − s)/m_red + (f_t − s/Δt)(t − Δt)/m_red with f_t = Δf_a·t̂

@@ -780,7 +780,7 @@ std::vector<BadFractureScene> bad_scenes() {
       {"zero_fracture_energy", replace(kScene, "\"0.02 N/mm\"", "0"), "fracture_energy",
        "materials[0].fracture_energy", "positive fracture energy"},
       {"unknown_friction_heating", with_contact("[contact]\nfriction_heating = \"third-order\""),
-       "friction_heating", "contact.friction_heating", "one of \"second-order\""},
+       "friction_heating", "contact.friction_heating", "one of \"lumped-slip\""},
       {"unknown_nodal_gradient", with_contact("[contact]\nnodal_gradient = \"steepest\""),
        "nodal_gradient", "contact.nodal_gradient", "one of \"principal\""},
       {"negative_characteristic_length",

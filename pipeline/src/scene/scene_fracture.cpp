@@ -442,15 +442,17 @@ mpm::ContactSpec<2> read_contact(const Section& c) {
     c.expected("nodal_gradient",
                "one of \"principal\" (structure tensor), \"largest\" ([HH17] Alg. 1)");
   if (c.has("friction")) spec.friction = read_friction(c, "friction");
-  const std::string heating = c.optional_string("friction_heating").value_or("second-order");
-  if (heating == "second-order")
+  const std::string heating = c.optional_string("friction_heating").value_or("lumped-slip");
+  if (heating == "lumped-slip")
+    spec.friction_work_order = mpm::FrictionWorkOrder::lumped_slip;
+  else if (heating == "second-order")
     spec.friction_work_order = mpm::FrictionWorkOrder::second;
   else if (heating == "first-order")
     spec.friction_work_order = mpm::FrictionWorkOrder::first;
   else
-    c.expected(
-        "friction_heating",
-        "one of \"second-order\" ([NBS18] eq. (34)-(36)), \"first-order\" ([NBS18] eq. (27))");
+    c.expected("friction_heating",
+               "one of \"lumped-slip\" (the default), \"second-order\" ([NBS18] eq. (34)-(36)), "
+               "\"first-order\" ([NBS18] eq. (27))");
   if (auto d = c.optional_number("critical_damage")) {
     if (!(*d > 0.0 && *d <= 1.0)) c.expected("critical_damage", "a damage level 0 < D_cr <= 1");
     spec.critical_damage = *d;

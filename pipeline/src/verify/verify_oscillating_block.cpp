@@ -50,7 +50,15 @@ double bulk_wave_speed(const mpm::MaterialSpec& m) {
 }
 
 const char* order_name(mpm::FrictionWorkOrder order) {
-  return order == mpm::FrictionWorkOrder::second ? "second-order" : "first-order";
+  switch (order) {
+    case mpm::FrictionWorkOrder::first:
+      return "first-order";
+    case mpm::FrictionWorkOrder::second:
+      return "second-order";
+    case mpm::FrictionWorkOrder::lumped_slip:
+      return "lumped-slip";
+  }
+  return "?";
 }
 
 CycleRun run_cycle(double courant, mpm::FrictionWorkOrder order, double normal_stress) {
@@ -104,9 +112,12 @@ std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options) {
   const std::vector<Variant> variants{
       {2e6, mpm::FrictionWorkOrder::second, options.quick ? quick : full},
       {2e6, mpm::FrictionWorkOrder::first, options.quick ? quick : full},
+      {2e6, mpm::FrictionWorkOrder::lumped_slip, options.quick ? quick : full},
       {5e6, mpm::FrictionWorkOrder::second, options.quick ? quick : full_partial},
       {5e6, mpm::FrictionWorkOrder::first, options.quick ? quick : full_partial},
+      {5e6, mpm::FrictionWorkOrder::lumped_slip, options.quick ? quick : full_partial},
       {100e6, mpm::FrictionWorkOrder::second, options.quick ? quick : full},
+      {100e6, mpm::FrictionWorkOrder::lumped_slip, options.quick ? quick : full},
   };
   std::vector<VerifyRow> rows;
   double friction_reference = 0.0, drive_reference = 0.0;
@@ -129,7 +140,7 @@ std::vector<VerifyRow> verify_oscillating_block(const VerifyOptions& options) {
       drive.push_back(d);
     }
     // Reference: this N's second-order work (and drive work) at its smallest C; the first-order
-    // variant that follows a second-order one shares it.
+    // and lumped-slip variants that follow a second-order one share it.
     const bool second = variant.order == mpm::FrictionWorkOrder::second;
     if (second) {
       friction_reference = friction.back().value;

@@ -13,8 +13,10 @@ namespace fragmpm::mpm {
 
 /// Frictional work per step: first order takes the final slip velocity as constant over the step
 /// ([NBS18] eq. (27)); second order adds the relative acceleration and stick-to-slip onset within
-/// the step ([NBS18] eq. (31)-(36)) and needs the nodal forces.
-enum class FrictionWorkOrder { first, second };
+/// the step ([NBS18] eq. (31)-(36)); lumped slip takes the friction impulse s on the slip w₀ of the
+/// lumped velocities, s w₀, friction's part of the step's energy identity in update-stress-last
+/// MPM (contact_exchange.cpp). Second order and lumped slip need the nodal forces.
+enum class FrictionWorkOrder { first, second, lumped_slip };
 
 /// The two fields at one node after the grid velocity update, before contact.
 /// In 2D all extensive quantities (mass, force, area) are per unit thickness.
@@ -28,7 +30,8 @@ struct ContactNode {
       Vec<D>::Zero();  ///< trial velocity of field b (the wall's velocity if rigid) [m/s]
   Vec<D> normal = Vec<D>::Zero();  ///< unit normal pointing from a towards b
   /// Nodal forces of this step (internal + external, before contact; [NBS18] eq. (3)) [N]. Only the
-  /// second-order friction work reads them ([NBS18] eq. (29)-(30)); a rigid wall's force is
+  /// friction work reads them: second order ([NBS18] eq. (29)-(30)), and lumped slip, which takes
+  /// the lumped velocity of a field as its trial velocity less Δt f/m; a rigid wall's force is
   /// ignored.
   Vec<D> force_a = Vec<D>::Zero();
   Vec<D> force_b = Vec<D>::Zero();
@@ -53,8 +56,8 @@ struct ContactExchange {
   double normal_impulse = 0.0;
   double slip_speed =
       0.0;  ///< |Δv′|, tangential relative speed after the exchange ([NBS18] eq. (21)) [m/s]
-  double friction_work =
-      0.0;  ///< energy dissipated by slip during this step [J] ([NBS18] eq. (27) or 34/36)
+  double friction_work = 0.0;  ///< energy dissipated by slip during this step [J] ([NBS18] eq.
+                               ///< (27) or (34)/(36), or the lumped-slip share)
 };
 
 /// Contact momentum exchange at one two-field node ([NBS18] §2.6-2.10).

@@ -169,8 +169,10 @@ struct ContactSpec {
       false;  ///< also require overlapping extrapolated positions ([NBS18] eq. (8))
   /// Frictional heat per step at two-field nodes and contact walls: second order ([NBS18] eq.
   /// (31)-(36)) converges in Δt where first order (eq. (27)) needs a ten times smaller step
-  /// ([NBS18] Fig. 7).
-  FrictionWorkOrder friction_work_order = FrictionWorkOrder::second;
+  /// ([NBS18] Fig. 7); both read the force-updated velocity, which at a light node is not the
+  /// material's. Lumped slip (the default) takes the friction impulse on the slip of the lumped
+  /// velocities, the particles' mean velocities at the node (contact_exchange.cpp).
+  FrictionWorkOrder friction_work_order = FrictionWorkOrder::lumped_slip;
   Vec<D> normal = Vec<D>::Zero();  ///< prescribed contact normal of field 0; zero = from mass
                                    ///< gradients ([XLS21] eq. (74))
 };
