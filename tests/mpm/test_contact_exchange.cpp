@@ -1,7 +1,7 @@
 // Node-level contact ([NBS18] §2.6-2.10): each friction law against its closed form at a single
 // two-field node in the stick and slide branches; momentum conservation; removal of approach;
 // separating fields; rigid walls; tensile adhesion (eq. (25)); friction work against the kinetic
-// energy removed.
+// energy removed, and the lumped-slip work against the slip of the lumped velocities.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -427,4 +427,35 @@ TEST(ContactExchange, AreaFromDomainGradientsIsExactWhereTheInterfaceEnds) {
     EXPECT_NEAR(eq11, exact * std::sqrt((1.0 + f) / (2.0 * f)), 1e-4);
     EXPECT_GT(eq11, 1.05 * exact);
   }
+}
+
+// Lumped-slip work: the friction impulse on the slip of the lumped velocities l = v − Δt f/m,
+// here the trial velocities less a force increment on a. Node of two_field_node(2.0): s = μ N* =
+// 0.36 N s along t̂ = +x. Field a carries a force that added 0.5 m/s in +x this step, so its
+// lumped velocity is 0.5 m/s slower in x than its trial one and the lumped slip is 2.5 m/s:
+// W = 0.36 × 2.5 = 0.9 J. The same node with a light field a (m = 0.02 kg) whose force pushed it
+// 50 m/s against the slip: the trial slip shrinks, but the lumped slip and W stay what the
+// material brought.
+TEST(ContactExchange, LumpedSlipWorkIsTheImpulseOnTheLumpedSlip) {
+  const CoulombFriction law{0.3};
+  ContactNode<2> node = two_field_node(2.0);
+  node.force_a = Vec<2>(0.5 * node.mass_a / dt, 0.0);
+  const auto ex = run(node, law, FrictionWorkOrder::lumped_slip);
+  ASSERT_TRUE(ex.sliding);
+  EXPECT_NEAR(ex.momentum_change_a.x(), 0.36, 1e-12);
+  EXPECT_NEAR(ex.friction_work, 0.36 * 2.5, 1e-12);
+
+  ContactNode<2> light = two_field_node(60.0);
+  light.mass_a = 0.02;
+  light.velocity_a.x() += 50.0;  // trial slip 10 m/s; lumped slip 60 m/s
+  light.force_a = Vec<2>(50.0 * light.mass_a / dt, 0.0);
+  const auto light_ex = run(light, law, FrictionWorkOrder::lumped_slip);
+  ASSERT_TRUE(light_ex.sliding);
+  const double reduced = light.mass_a * light.mass_b / (light.mass_a + light.mass_b);
+  const double s = 0.3 * reduced * 1.0;  // μ m_red × approach speed 1 m/s
+  EXPECT_NEAR(light_ex.friction_work, s * 60.0, 1e-12 * s * 60.0);
+  // A slip the force reversed within the step books nothing.
+  ContactNode<2> reversed = two_field_node(2.0);
+  reversed.force_a = Vec<2>(-3.0 * reversed.mass_a / dt, 0.0);  // lumped slip −1 m/s
+  EXPECT_EQ(run(reversed, law, FrictionWorkOrder::lumped_slip).friction_work, 0.0);
 }
