@@ -7,12 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "fragmpm/analysis/crack_crossings.hpp"
 #include "fragmpm/analysis/fragments.hpp"
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/scene.hpp"
@@ -27,44 +27,17 @@ constexpr double notch_depth = 2e-3;      // [m]
 constexpr double bar_height = 10e-3;      // [m]
 constexpr double fully_damaged = 0.99;
 
-/// Crack length formed in the ligament, per unit thickness. Each reference row of bar particles
-/// above the notch, within 3 mm of the notch axis, is walked in x; every run of masked particles
-/// (d ≥ 0.99) and every step between two fragments of `fragmpm analyze` (bonds cut by opening, so
-/// crack faces that separated while their particles kept some strength count too) is one crossing.
-/// The length is the number of crossings times the row spacing: one straight crack through the
-/// ligament gives the ligament, the two cracks that a finer grid starts from the notch's two
-/// corners give twice it. (A crack inclined at θ to the rows' normal would count cos θ of its
-/// length; here the cracks run within a few degrees of vertical.)
+/// Crack length formed in the ligament, per unit thickness: the rows of bar particles above the
+/// notch within 3 mm of its axis, each crossed once by every run of fully damaged particles and
+/// every boundary between two fragments of `fragmpm analyze` (crack faces that separated while
+/// their particles kept some strength count too). One crack through the ligament gives the
+/// ligament; the two cracks a finer grid starts from the notch's two corners give twice it.
 double formed_crack_length(const mpm::Particles<2>& reference, const mpm::Particles<2>& current,
                            double spacing) {
-  const analysis::FragmentLabels labels = analysis::label_fragments(reference, current);
-  std::map<long long, std::vector<std::size_t>> rows;  // reference row index → particles
-  for (std::size_t p = 0; p < reference.size(); ++p) {
-    if (reference.body[p] != 0) continue;
-    const double x = reference.x[p][0], y = reference.x[p][1];
-    if (std::abs(x - notch_centre) > 3e-3 || y < notch_depth || y > bar_height) continue;
-    // Particle centres sit half a spacing into their row (y = (k + ½) s), so floor is exact.
-    rows[static_cast<long long>(std::floor(y / spacing))].push_back(p);
-  }
-  long long crossings = 0;
-  for (auto& [row, members] : rows) {
-    std::sort(members.begin(), members.end(),
-              [&](std::size_t a, std::size_t b) { return reference.x[a][0] < reference.x[b][0]; });
-    bool in_masked = false;
-    std::int32_t previous = -1;  // last unmasked fragment of the row
-    for (std::size_t p : members) {
-      const std::int32_t fragment = labels.fragment[p];
-      if (fragment < 0) {
-        if (!in_masked) ++crossings;
-        in_masked = true;
-        continue;
-      }
-      if (!in_masked && previous >= 0 && fragment != previous) ++crossings;
-      in_masked = false;
-      previous = fragment;
-    }
-  }
-  return static_cast<double>(crossings) * spacing;
+  const analysis::RowWindow ligament{notch_centre - 3e-3, notch_centre + 3e-3, notch_depth,
+                                     bar_height, 0};
+  return analysis::crack_length_across_rows(
+      reference, analysis::label_fragments(reference, current), ligament, spacing);
 }
 
 /// What a variant changes in the scene's geometry.
