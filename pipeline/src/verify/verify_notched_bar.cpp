@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <map>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,7 +26,6 @@ namespace {
 constexpr double notch_centre = 27.5e-3;  // [m], scenes/verify/notched-bar.toml
 constexpr double notch_depth = 2e-3;      // [m]
 constexpr double bar_height = 10e-3;      // [m]
-constexpr double fully_damaged = 0.99;
 
 /// Crack length formed in the ligament, per unit thickness: the rows of bar particles above the
 /// notch within 3 mm of its axis, each crossed once by every run of fully damaged particles and
@@ -53,7 +53,6 @@ enum class Layout {
 /// starts a crack at each corner; the rounded top concentrates the stress on the axis, where
 /// [HH17] Fig. 12 draws its single crack.
 std::string rounded_notch_vertices() {
-  constexpr double pi = 3.14159265358979323846;
   constexpr double half_width = 1e-3;  // [m]
   constexpr int segments = 24;
   std::vector<std::pair<double, double>> points{
@@ -61,7 +60,7 @@ std::string rounded_notch_vertices() {
       {notch_centre - half_width, 0.0},
       {notch_centre - half_width, notch_depth - half_width}};
   for (int k = 1; k < segments; ++k) {
-    const double angle = pi * (1.0 - static_cast<double>(k) / segments);
+    const double angle = std::numbers::pi * (1.0 - static_cast<double>(k) / segments);
     points.emplace_back(notch_centre + half_width * std::cos(angle),
                         notch_depth - half_width + half_width * std::sin(angle));
   }
