@@ -253,9 +253,9 @@ std::vector<VerifyRow> verify_sphere_beam(const VerifyOptions& options) {
       // Rankine and time-to-failure scenes: reported beside the paper's fields, no target.
       {"isotropic-partitioned", 10606.6, nullptr, 10606.6, {0, 12, 40, 56, 70, 88}, "auto", false}};
   // `--quick` runs the three cases and the partitioned case (i) at h = l₀ (minutes each). The full
-  // set starts with case (i) at
-  // the paper's cell, the run its energy check is about, and prints each run's rows as soon as it
-  // ends (each run at the paper's cell takes about an hour on 2 cores).
+  // set starts with case (i) at the paper's cell, the run its energy check is about, and prints
+  // each run's rows as soon as it ends (each run at the paper's cell takes about an hour on 2
+  // cores).
   std::vector<VerifyRow> rows;
   auto add = [&](const BeamVariant& v, double cell_size, int level) {
     const std::string figures = case_directory(options, "sphere-beam");
