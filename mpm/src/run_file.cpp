@@ -475,6 +475,21 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
     g.write("temperature", p.temperature, {n});
   else if (g.exists("temperature"))
     g.remove("temperature");
+  // The phase-field warm start: the last nodal solution by global node and field.
+  const PhaseFieldWarmStart<D>& pf = checkpoint.phase_field;
+  if (!pf.empty()) {
+    const std::size_t m = pf.solution.size();
+    std::vector<std::int64_t> nodes(m * d);
+    for (std::size_t r = 0; r < m; ++r)
+      for (std::size_t k = 0; k < d; ++k) nodes[r * d + k] = pf.node[r][static_cast<int>(k)];
+    g.write("phase_field_node", nodes, {m, d});
+    g.write("phase_field_field", pf.field, {m});
+    g.write("phase_field_solution", pf.solution, {m});
+    g.set_attribute("phase_field_incomplete_cholesky", std::int64_t{pf.incomplete_cholesky});
+  } else {
+    for (const char* name : {"phase_field_node", "phase_field_field", "phase_field_solution"})
+      if (g.exists(name)) g.remove(name);
+  }
   g.set_attribute("time", checkpoint.time);
   g.set_attribute("step", static_cast<std::int64_t>(checkpoint.step));
   for (const auto& [name, member] : accumulator_fields())
@@ -532,6 +547,20 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
     unpack<D>(read_shaped<double>(g, "plastic_inverse", {n, d, d}), p.plastic_inverse);
   }
   if (g.exists("id")) p.id = read_shaped<std::int32_t>(g, "id", {n});
+  // Checkpoints from before the warm start have none: the next solve starts from the particles.
+  if (g.exists("phase_field_solution")) {
+    PhaseFieldWarmStart<D>& pf = c.phase_field;
+    const std::size_t m = g.open_dataset("phase_field_solution").rows();
+    pf.solution = read_shaped<double>(g, "phase_field_solution", {m});
+    pf.field = read_shaped<std::int32_t>(g, "phase_field_field", {m});
+    const std::vector<std::int64_t> nodes =
+        read_shaped<std::int64_t>(g, "phase_field_node", {m, d});
+    pf.node.resize(m);
+    for (std::size_t r = 0; r < m; ++r)
+      for (std::size_t k = 0; k < d; ++k) pf.node[r][static_cast<int>(k)] = nodes[r * d + k];
+    pf.incomplete_cholesky = g.has_attribute("phase_field_incomplete_cholesky") &&
+                             g.attribute_int64("phase_field_incomplete_cholesky") != 0;
+  }
   return c;
 }
 

@@ -379,8 +379,13 @@ const PhaseFieldWork& Solver<D>::phase_field_work() const {
 }
 
 template <int D>
+PhaseFieldWarmStart<D> Solver<D>::phase_field_warm_start() const {
+  return impl_->state.phase_field ? impl_->state.phase_field->last : PhaseFieldWarmStart<D>{};
+}
+
+template <int D>
 void Solver<D>::restore(double time, long long step, const EnergyAccumulators& totals,
-                        Particles<D> particles) {
+                        Particles<D> particles, PhaseFieldWarmStart<D> phase_field) {
   Problem<D>& problem = impl_->state.problem;
   if (particles.id.size() != particles.size()) {  // a state saved before particles had ids
     particles.id.resize(particles.size());
@@ -396,6 +401,8 @@ void Solver<D>::restore(double time, long long step, const EnergyAccumulators& t
   if (!impl_->state.load_force.empty()) impl_->state.load_force.resize(problem.particles.size());
   settle_affine(problem);
   if (impl_->state.thermal) impl_->start_thermal();
+  // The constructor's solve (from the scene's initial history) is replaced by the checkpoint's.
+  if (impl_->state.phase_field) impl_->state.phase_field->last = std::move(phase_field);
   impl_->compute_initial_state();
   impl_->state.time = time;
   impl_->state.step = step;

@@ -143,6 +143,7 @@ void solve_phase_field(StepState<D>& state) {
     state.totals.fracture_energy = 0.0;
     pf.iterations = 0;
     pf.residual = 0.0;
+    pf.last = PhaseFieldWarmStart<D>{};
     return;
   }
 
@@ -313,20 +314,58 @@ void solve_phase_field(StepState<D>& state) {
     }
   }
 
-  // 5. Conjugate gradients from the projected c = 1 − d ([KT19] §4.3: tol_c = 10⁻⁶). K is
-  //    symmetric positive definite (a weighted mass matrix plus a Laplacian).
+  // 5. Conjugate gradients ([KT19] §4.3: tol_c = 10⁻⁶); K is symmetric positive definite (a
+  //    weighted mass matrix plus a Laplacian). They start from the last step's nodal c where the
+  //    same node and field had an unknown (the particles moved a fraction of a cell since, so it
+  //    is the nearer guess: on the rings' system it halves the Jacobi iterations), and elsewhere
+  //    from the particles' projected c = 1 − d.
   for (std::size_t r = 0; r < m; ++r)
     pf.guess[static_cast<Eigen::Index>(r)] =
         pf.guess_weight[r] > 0.0 ? pf.guess[static_cast<Eigen::Index>(r)] / pf.guess_weight[r]
                                  : 1.0;
+  for (std::size_t k = 0; k < pf.last.solution.size(); ++k) {
+    const IVec<D>& node = pf.last.node[k];
+    if (((node - grid.lower).array() < 0).any() ||
+        ((node - grid.lower).array() >= grid.extent.array()).any())
+      continue;
+    const std::size_t i = static_cast<std::size_t>(grid.linear(node));
+    for (int slot = 0; slot < K; ++slot)
+      if (pf.node_body[i * K + static_cast<std::size_t>(slot)] == pf.last.field[k]) {
+        pf.guess[pf.node_unknown[i * K + static_cast<std::size_t>(slot)]] = pf.last.solution[k];
+        break;
+      }
+  }
   const Eigen::Map<const typename PhaseFieldState<D>::Matrix> matrix(
       unknowns, unknowns, static_cast<Eigen::Index>(nonzeros), pf.outer.data(), pf.inner.data(),
       pf.values.data());
-  pf.solver.setTolerance(phase_field_tolerance);
-  pf.solver.compute(matrix);
-  pf.solution = pf.solver.solveWithGuess(pf.rhs, pf.guess);
-  pf.iterations = static_cast<int>(pf.solver.iterations());
-  pf.residual = pf.solver.error();
+  pf.factored = false;
+  if (pf.last.incomplete_cholesky) {
+    pf.factored_solver.setTolerance(phase_field_tolerance);
+    pf.factored_solver.compute(matrix);
+    // The factor can fail on an indefinite shifted pivot; Jacobi then solves this step.
+    pf.factored = pf.factored_solver.preconditioner().info() == Eigen::Success;
+  }
+  if (pf.factored) {
+    pf.solution = pf.factored_solver.solveWithGuess(pf.rhs, pf.guess);
+    pf.iterations = static_cast<int>(pf.factored_solver.iterations());
+    pf.residual = pf.factored_solver.error();
+  } else {
+    pf.solver.setTolerance(phase_field_tolerance);
+    pf.solver.compute(matrix);
+    pf.solution = pf.solver.solveWithGuess(pf.rhs, pf.guess);
+    pf.iterations = static_cast<int>(pf.solver.iterations());
+    pf.residual = pf.solver.error();
+  }
+  pf.last.incomplete_cholesky = pf.factored ? pf.iterations >= factored_iteration_floor
+                                            : pf.iterations > jacobi_iteration_limit;
+  pf.last.node.resize(m);
+  pf.last.field.resize(m);
+  pf.last.solution.resize(m);
+  for (std::size_t r = 0; r < m; ++r) {
+    pf.last.node[r] = grid.global(pf.unknown_node[r]);
+    pf.last.field[r] = pf.unknown_body[r];
+    pf.last.solution[r] = pf.solution[static_cast<Eigen::Index>(r)];
+  }
 
   // 6. d = 1 − c and ∇d at the particles (eq. (53)-(54)) and the crack energy of the discrete
   //    field, Ψ_f = Σ V₀ G_c (d²/(4 l₀) + l₀ |∇d|²) (eq. (3)-(4)), plus G_c l₀³ χᵀ Γ χ with the

@@ -78,7 +78,7 @@ int execute(const RunArguments& args) {
     mpm::Solver<2> solver(std::move(problem));
     if (checkpoint)
       solver.restore(checkpoint->time, checkpoint->step, checkpoint->totals,
-                     std::move(checkpoint->particles));
+                     std::move(checkpoint->particles), std::move(checkpoint->phase_field));
     RunLoopOptions options;
     options.write_initial_frame = !checkpoint.has_value();
     options.progress = !args.quiet;

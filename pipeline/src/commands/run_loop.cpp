@@ -64,6 +64,7 @@ RunLoopResult run_loop(mpm::Solver<2>& solver, mpm::RunFile<2>& file,
     state.step = solver.step_count();
     state.totals = solver.accumulators();
     state.particles = solver.particles();
+    state.phase_field = solver.phase_field_warm_start();
     file.write_checkpoint(state);
     file.flush();
   };

@@ -38,6 +38,7 @@ struct Checkpoint {
   long long step = 0;
   EnergyAccumulators totals;
   Particles<D> particles;
+  PhaseFieldWarmStart<D> phase_field;  ///< empty without a phase-field material
 };
 
 /// Names of frame datasets, in the order of docs/design.md

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "fragmpm/mpm/phase_field_warm_start.hpp"
 #include "fragmpm/mpm/problem.hpp"
 #include "fragmpm/mpm/series.hpp"
 
@@ -74,10 +75,14 @@ class Solver {
   double stable_dt() const;
   const PhaseFieldWork& phase_field_work() const;
 
-  /// Restores a checkpointed state (time, step, accumulators, particles must come from the same
-  /// problem).
+  /// The nodal phase field that starts the next solve (empty without a phase-field material or
+  /// before the first solve), for a checkpoint.
+  PhaseFieldWarmStart<D> phase_field_warm_start() const;
+
+  /// Restores a checkpointed state (time, step, accumulators, particles and the phase-field warm
+  /// start must come from the same problem).
   void restore(double time, long long step, const EnergyAccumulators& totals,
-               Particles<D> particles);
+               Particles<D> particles, PhaseFieldWarmStart<D> phase_field = {});
 
  private:
   struct Impl;
