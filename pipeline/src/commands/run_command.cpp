@@ -119,6 +119,16 @@ int execute(const RunArguments& args) {
     // spreading out, a principal stress far above the strengths an unstable step.
     std::fprintf(stderr, "  end state: %s\n",
                  mpm::describe(mpm::state_extremes<2>(solver.particles())).c_str());
+    // The phase-field stage's share of this invocation's wall time (a restarted run counts from
+    // the restart): where a long run spends its time once cracks are open.
+    const mpm::PhaseFieldWork& work = solver.phase_field_work();
+    if (work.runs > 0)
+      std::fprintf(stderr,
+                   "  phase field: %lld solves, %.1f conjugate-gradient iterations a solve, %lld "
+                   "with the incomplete Cholesky factor, %.1f s (%.0f %% of the run)\n",
+                   work.runs, double(work.iterations) / double(work.runs), work.factored_runs,
+                   work.seconds,
+                   result.wall_seconds > 0 ? 100.0 * work.seconds / result.wall_seconds : 0.0);
     const mpm::LostParticles& lost = row.totals.lost;
     if (solver.problem().grid.outside == mpm::OutsidePolicy::remove)
       std::fprintf(stderr,
