@@ -485,7 +485,7 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
     g.write("phase_field_node", nodes, {m, d});
     g.write("phase_field_field", pf.field, {m});
     g.write("phase_field_solution", pf.solution, {m});
-    g.set_attribute("phase_field_incomplete_cholesky", std::int64_t{pf.incomplete_cholesky});
+    g.set_attribute("phase_field_direct", std::int64_t{pf.direct});
   } else {
     for (const char* name : {"phase_field_node", "phase_field_field", "phase_field_solution"})
       if (g.exists(name)) g.remove(name);
@@ -558,8 +558,8 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
     pf.node.resize(m);
     for (std::size_t r = 0; r < m; ++r)
       for (std::size_t k = 0; k < d; ++k) pf.node[r][static_cast<int>(k)] = nodes[r * d + k];
-    pf.incomplete_cholesky = g.has_attribute("phase_field_incomplete_cholesky") &&
-                             g.attribute_int64("phase_field_incomplete_cholesky") != 0;
+    pf.direct =
+        g.has_attribute("phase_field_direct") && g.attribute_int64("phase_field_direct") != 0;
   }
   return c;
 }

@@ -161,7 +161,7 @@ struct Solver<D>::Impl {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++phase_field_work.runs;
     phase_field_work.iterations += state.phase_field->iterations;
-    phase_field_work.factored_runs += state.phase_field->factored ? 1 : 0;
+    phase_field_work.direct_runs += state.phase_field->direct ? 1 : 0;
   }
   void solve_phase_field_for_kind() {
     switch (state.problem.grid.shape_function) {

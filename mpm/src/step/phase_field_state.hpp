@@ -3,6 +3,7 @@
 // equation, the unknowns of the active grid (one per node and body), the assembled system and the
 // conjugate-gradient solver. Exists only when a material has the phase-field law.
 #include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <array>
 #include <cstdint>
@@ -21,19 +22,23 @@ inline constexpr char material_phase_field = 2;
 /// 10⁻⁶).
 inline constexpr double phase_field_tolerance = 1e-6;
 
-/// Preconditioner switch. Jacobi costs nothing to set up and suffices while the history field is
-/// mild (`fragmpm bench`, 10⁵ particles: 12 iterations a step). Once cracks are open, the history
-/// H of their particles reaches 10⁵ G_c/(4 l₀), and the H-weighted particle mass matrix of a
-/// cracked band, nearly rank-deficient with few particles per cell, sets the condition number. On
-/// the system of the colliding rings at 300 µs (10 386 unknowns, H/(G_c/(4 l₀)) up to 1.3 × 10⁵)
-/// Jacobi took 668 iterations (0.11 s) and the incomplete Cholesky factor of the same system in
-/// node order 105 (0.067 s); warm-started, 314 against 35. Its factorisation (0.016 s) costs about
-/// 95 Jacobi iterations and each of its iterations about 3, so with 8 to 10 times fewer
-/// iterations the factor pays once Jacobi needs more than about 150. A solve past
-/// `jacobi_iteration_limit` hands the next solves to the factor; a factored solve below
-/// `factored_iteration_floor` (Jacobi would then need about 150 or fewer) hands them back.
-inline constexpr int jacobi_iteration_limit = 150;
-inline constexpr int factored_iteration_floor = 15;
+/// When the nodal system is solved directly. Jacobi-preconditioned conjugate gradients cost
+/// nothing to set up and suffice while the history field is mild (`fragmpm bench`, 10⁵ particles:
+/// about 12 iterations a step). Once cracks are open they do not: the history of their particles
+/// reaches 10⁵ G_c/(4 l₀), and the particle quadrature leaves K only semi-definite where a few
+/// particles carry more nodes than their values and gradients fix (an isolated particle's 3 × 3
+/// B-spline nodes see rank 3), so in floating point its smallest pivots are rounding noise
+/// (LDLᵀ of the colliding rings' system at 450 µs, 10 546 unknowns: 11 pivots between −10⁻¹¹ and
+/// −10⁻¹⁴ against diagonals up to 2.7 × 10⁴). There Jacobi took 1 177 iterations (0.21 s), an
+/// incomplete Cholesky factor 592 (0.39 s) and 300 to 1 600 a step over the 130 µs before, while a
+/// sparse LDLᵀ (Eigen's SimplicialLDLT, AMD order) solves the same system in 0.055 s to a relative
+/// residual of 3 × 10⁻¹⁴, whatever the history: at 300 µs it took 0.050 s against Jacobi's 668
+/// iterations (0.11 s, 0.17 ms each). A Jacobi solve past `jacobi_iteration_limit`, the cost of
+/// about one factorisation at that size, hands every later solve to the factorisation: the
+/// history only grows, so the conditioning that made Jacobi slow does not go away.
+inline constexpr int jacobi_iteration_limit = 300;
+/// Relative diagonal shift of the direct solve (phase_field_stage.cpp, step 5).
+inline constexpr double phase_field_pivot_shift = 1e-12;
 
 template <int D>
 struct PhaseFieldState {
@@ -71,18 +76,15 @@ struct PhaseFieldState {
   /// The system K c = f for c = 1 − d in compressed rows ([KT19] eq. (56)-(57)).
   std::vector<int> outer, inner;
   std::vector<double> values;
+  std::vector<double> shifted_values;  ///< values with the direct solve's diagonal shift
   Eigen::VectorXd rhs, guess, solution;
   Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper> solver;
-  /// The same, preconditioned by an incomplete Cholesky factor in node order (the unknowns are
-  /// numbered along grid rows, so the factor keeps the band's coupling; a fill-reducing order
-  /// took three times as many iterations on the rings' system).
-  Eigen::ConjugateGradient<
-      Matrix, Eigen::Lower | Eigen::Upper,
-      Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::NaturalOrdering<int>>>
-      factored_solver;
-  /// The last solution, which starts the next solve, and the preconditioner the next solve uses.
+  /// The direct solve: K is symmetric, so its compressed rows are also its compressed columns.
+  using ColumnMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+  Eigen::SimplicialLDLT<ColumnMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> direct_solver;
+  /// The last solution, which starts the next solve, and whether the next solve is direct.
   PhaseFieldWarmStart<D> last;
-  bool factored = false;  ///< the last solve used the incomplete Cholesky factor
+  bool direct = false;    ///< the last solve factorised K (sparse LDLᵀ)
   int iterations = 0;     ///< of the last solve
   double residual = 0.0;  ///< relative residual of the last solve
 };

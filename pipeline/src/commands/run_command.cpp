@@ -124,9 +124,9 @@ int execute(const RunArguments& args) {
     const mpm::PhaseFieldWork& work = solver.phase_field_work();
     if (work.runs > 0)
       std::fprintf(stderr,
-                   "  phase field: %lld solves, %.1f conjugate-gradient iterations a solve, %lld "
-                   "with the incomplete Cholesky factor, %.1f s (%.0f %% of the run)\n",
-                   work.runs, double(work.iterations) / double(work.runs), work.factored_runs,
+                   "  phase field: %lld solves, %lld of them direct (sparse LDLT), %.1f "
+                   "conjugate-gradient iterations a solve, %.1f s (%.0f %% of the run)\n",
+                   work.runs, work.direct_runs, double(work.iterations) / double(work.runs),
                    work.seconds,
                    result.wall_seconds > 0 ? 100.0 * work.seconds / result.wall_seconds : 0.0);
     const mpm::LostParticles& lost = row.totals.lost;

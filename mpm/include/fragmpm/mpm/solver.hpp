@@ -45,10 +45,10 @@ double stable_time_step(const Problem<D>& problem, const Particles<D>& particles
 /// What the phase-field stage ([KT19] Alg. 1) has cost so far; all zero without a phase-field
 /// material. For `fragmpm bench`, which sets it against the rest of the step.
 struct PhaseFieldWork {
-  long long runs = 0;           ///< one a step, and one at the start when the scene sets a history
-  long long iterations = 0;     ///< conjugate-gradient iterations over all solves
-  long long factored_runs = 0;  ///< solves preconditioned by the incomplete Cholesky factor
-  double seconds = 0.0;         ///< wall time in the stage: assembly, solve, interpolation [s]
+  long long runs = 0;         ///< one a step, and one at the start when the scene sets a history
+  long long iterations = 0;   ///< conjugate-gradient iterations over all solves
+  long long direct_runs = 0;  ///< solves by sparse LDLᵀ instead of conjugate gradients
+  double seconds = 0.0;       ///< wall time in the stage: assembly, solve, interpolation [s]
 };
 
 template <int D>
