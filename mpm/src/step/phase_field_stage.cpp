@@ -314,11 +314,12 @@ void solve_phase_field(StepState<D>& state) {
     }
   }
 
-  // 5. Conjugate gradients ([KT19] §4.3: tol_c = 10⁻⁶); K is symmetric positive definite (a
-  //    weighted mass matrix plus a Laplacian). They start from the last step's nodal c where the
-  //    same node and field had an unknown (the particles moved a fraction of a cell since, so it
-  //    is the nearer guess: on the rings' system it halves the Jacobi iterations), and elsewhere
-  //    from the particles' projected c = 1 − d.
+  // 5. Conjugate gradients ([KT19] §4.3: tol_c = 10⁻⁶); K is symmetric positive semi-definite
+  //    (a weighted mass matrix plus a Laplacian by particle quadrature, phase_field_state.hpp),
+  //    with f clear of its null space (f is a sum of the particles' rows). They start from the last
+  //    step's nodal c where the same node and field had an unknown (the particles moved a fraction
+  //    of a cell since, so it is the nearer guess: on the rings' system it halves the Jacobi
+  //    iterations), and elsewhere from the particles' projected c = 1 − d.
   for (std::size_t r = 0; r < m; ++r)
     pf.guess[static_cast<Eigen::Index>(r)] =
         pf.guess_weight[r] > 0.0 ? pf.guess[static_cast<Eigen::Index>(r)] / pf.guess_weight[r]
