@@ -362,7 +362,17 @@ void solve_phase_field(StepState<D>& state) {
     const Eigen::Map<const typename PhaseFieldState<D>::ColumnMatrix> shifted(
         unknowns, unknowns, static_cast<Eigen::Index>(nonzeros), pf.outer.data(), pf.inner.data(),
         pf.shifted_values.data());
-    pf.direct_solver.compute(shifted);
+    // The AMD ordering and the symbolic analysis depend on the pattern alone; a step whose
+    // unknowns and couplings are the last step's skips them (in a profile of the sphere-beam at
+    // h = 0.125 mm with the crack open they were about 5 % of the samples, the numeric
+    // factorisation 56 %).
+    pf.pattern_reused = pf.analysed_outer == pf.outer && pf.analysed_inner == pf.inner;
+    if (!pf.pattern_reused) {
+      pf.direct_solver.analyzePattern(shifted);
+      pf.analysed_outer = pf.outer;
+      pf.analysed_inner = pf.inner;
+    }
+    pf.direct_solver.factorize(shifted);
     bool solved = false;
     if (pf.direct_solver.info() == Eigen::Success) {
       pf.solution = pf.direct_solver.solve(pf.rhs);

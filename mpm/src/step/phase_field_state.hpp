@@ -82,6 +82,11 @@ struct PhaseFieldState {
   /// The direct solve: K is symmetric, so its compressed rows are also its compressed columns.
   using ColumnMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   Eigen::SimplicialLDLT<ColumnMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> direct_solver;
+  /// The pattern (compressed rows) the direct solver's ordering and elimination tree were computed
+  /// for. The ordering depends on the pattern alone, so a step whose unknowns and couplings did not
+  /// change factorises with it again and gets the same bits as a fresh analysis.
+  std::vector<int> analysed_outer, analysed_inner;
+  bool pattern_reused = false;  ///< the last direct solve skipped the analysis
   /// The last solution, which starts the next solve, and whether the next solve is direct.
   PhaseFieldWarmStart<D> last;
   bool direct = false;    ///< the last solve factorised K (sparse LDLᵀ)

@@ -124,10 +124,11 @@ int execute(const RunArguments& args) {
     const mpm::PhaseFieldWork& work = solver.phase_field_work();
     if (work.runs > 0)
       std::fprintf(stderr,
-                   "  phase field: %lld solves, %lld of them direct (sparse LDLT), %.1f "
-                   "conjugate-gradient iterations a solve, %.1f s (%.0f %% of the run)\n",
-                   work.runs, work.direct_runs, double(work.iterations) / double(work.runs),
-                   work.seconds,
+                   "  phase field: %lld solves, %lld of them direct (sparse LDLT, %lld with the "
+                   "last step's ordering), %.1f conjugate-gradient iterations a solve, %.1f s "
+                   "(%.0f %% of the run)\n",
+                   work.runs, work.direct_runs, work.reused_orderings,
+                   double(work.iterations) / double(work.runs), work.seconds,
                    result.wall_seconds > 0 ? 100.0 * work.seconds / result.wall_seconds : 0.0);
     const mpm::LostParticles& lost = row.totals.lost;
     if (solver.problem().grid.outside == mpm::OutsidePolicy::remove)

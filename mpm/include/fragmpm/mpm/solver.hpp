@@ -48,7 +48,8 @@ struct PhaseFieldWork {
   long long runs = 0;         ///< one a step, and one at the start when the scene sets a history
   long long iterations = 0;   ///< conjugate-gradient iterations over all solves
   long long direct_runs = 0;  ///< solves by sparse LDLᵀ instead of conjugate gradients
-  double seconds = 0.0;       ///< wall time in the stage: assembly, solve, interpolation [s]
+  long long reused_orderings = 0;  ///< direct solves that kept the last step's ordering
+  double seconds = 0.0;            ///< wall time in the stage: assembly, solve, interpolation [s]
 };
 
 template <int D>
