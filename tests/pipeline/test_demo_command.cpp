@@ -169,6 +169,9 @@ TEST(DemoCommand, RefusesNonEmptyDirectoryBeforeSimulating) {
   const fs::path out = dir / "out";
   fs::create_directories(out);
   std::ofstream(out / "keep.txt") << "mine\n";
+  // The demo looks for its micrograph first; a build directory outside the source tree finds it
+  // only through FRAGMPM_SOURCE_DIR.
+  setenv("FRAGMPM_SOURCE_DIR", FRAGMPM_SOURCE_DIR, 1);
   EXPECT_EQ(run_fragmpm("demo -q -o " + out.string(), dir / "log.txt"), 2);
   const std::string log = read_text(dir / "log.txt");
   EXPECT_NE(log.find("fragmpm demo: -o " + out.string()), std::string::npos) << log;

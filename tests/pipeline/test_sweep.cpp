@@ -186,8 +186,13 @@ TEST(SweepCommand, JobsAndMpiRanksWriteBitIdenticalMemberRunFiles) {
   setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
   setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
   ASSERT_EQ(
-      run_command(std::string(FRAGMPM_TEST_MPIRUN) + " -n 3 --oversubscribe " + FRAGMPM_BINARY +
-                      " sweep " + sweep.string() + " -o " + b.string() + " --mpi --threads 1",
+      // In the sanitizer build the ranks' leak check is off: OpenMPI's components allocate for the
+      // life of the process and are unloaded before exit, so LeakSanitizer reports their blocks
+      // from "<unknown module>" frames no suppression can name. The same members run under the
+      // leak check with --jobs above; memory errors are still checked in the ranks.
+      run_command(std::string("ASAN_OPTIONS=detect_leaks=0 ") + FRAGMPM_TEST_MPIRUN +
+                      " -n 3 --oversubscribe " + FRAGMPM_BINARY + " sweep " + sweep.string() +
+                      " -o " + b.string() + " --mpi --threads 1",
                   dir / "log_mpi"),
       0)
       << read_text(dir / "log_mpi");
