@@ -35,7 +35,8 @@ struct ThreeGrainRun {
   mpm::Particles<2> reference;          ///< the first state (reference configuration)
   int top_body = 0;                     ///< body id of the highest grain
   bool thermal = false;
-  std::vector<double> curve_displacement, curve_force;  ///< top platen [m], |F_y| [N/m]
+  /// Top platen: its travel every ten steps [m] and the largest |F_y| of those ten steps [N/m].
+  std::vector<double> curve_displacement, curve_force;
   double input_energy = 0.0;       ///< initial energy + wall work at the end [J/m]
   double balance_error = 0.0;      ///< unexplained energy at the end [J/m]
   mpm::EnergyAccumulators totals;  ///< the booked energies at the end [J/m]
