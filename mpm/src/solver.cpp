@@ -92,6 +92,8 @@ struct Solver<D>::Impl {
         std::holds_alternative<AdhesiveFriction>(problem.contact.friction) ||
         problem.thermal.active();
     s.plan.gap_test = problem.contact.position_gap_test;
+    s.plan.wall_gap_test = std::any_of(problem.walls.begin(), problem.walls.end(),
+                                       [](const WallSpec<D>& w) { return w.gap_test; });
     s.plan.books_contact = s.plan.partitioned || !problem.walls.empty();
     s.plan.principal_rule = problem.contact.nodal_gradient == NodalGradientRule::principal;
     s.kernel_radius = problem.grid.cell_size * std::sqrt(double(D));

@@ -88,6 +88,7 @@ void size_grid(StepState<D>& state) {
     reset_array(N.force[f], nodes, Vec<D>::Zero().eval());
     size_array(N.velocity_lumped[f], nodes);
     size_array(N.velocity[f], nodes);
+    if (state.plan.wall_gap_test) reset_array(N.position[f], nodes, Vec<D>::Zero().eval());
   }
   if (state.plan.books_contact) reset_array(N.touched, nodes, std::uint8_t{0});
   if (!state.partition.this_step) return;

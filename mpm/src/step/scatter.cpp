@@ -23,6 +23,7 @@ void scatter_to_grid(StepState<D>& state) {
   const bool penalty = state.penalty_walls;
   const bool by_bodies = state.plan.by_bodies;
   const bool gap_test = state.plan.gap_test;
+  const bool wall_gap_test = state.plan.wall_gap_test;
   const bool area_needed = state.plan.needs_contact_area;
   scatter_particles<D, Kind, Affine>(state, [&](std::int64_t p, const Stencil<D>& s) {
     const double volume = P.volume0[p] * P.F[p].determinant();
@@ -34,6 +35,7 @@ void scatter_to_grid(StepState<D>& state) {
       const std::size_t i = static_cast<std::size_t>(s.node[e]);
       const int f = field_at<D, Partitioned>(state, p, e);
       N.mass[f][i] += s.weight[e] * P.mass[p];
+      if (wall_gap_test) N.position[f][i] += s.weight[e] * P.mass[p] * P.x[p];
       if constexpr (Affine)
         N.momentum[f][i] += s.weight[e] * (momentum + P.mass[p] * (P.affine[p] * s.offset[e]));
       else

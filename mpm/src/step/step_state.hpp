@@ -27,6 +27,7 @@ struct StepPlan {
   bool damage = false;              ///< some material has a damage law
   bool needs_contact_area = false;  ///< adhesion or contact conductance scale with the contact area
   bool gap_test = false;            ///< position test of contact ([NBS18] eq. (8))
+  bool wall_gap_test = false;       ///< a contact wall tests the material's position (walls.cpp)
   bool principal_rule = false;      ///< nodal gradient = principal direction of the gradient tensor
   bool books_contact = false;       ///< two-field nodes or walls exist: book the contact energy
   bool phase_field = false;         ///< some material has the phase-field law: the nodal solve runs
@@ -42,6 +43,8 @@ struct NodeFields {
   std::array<std::vector<Vec<D>>, 2> momentum, force;
   std::array<std::vector<Vec<D>>, 2> velocity_lumped;  ///< p_i / m_i before the grid update
   std::array<std::vector<Vec<D>>, 2> velocity;         ///< after the grid update, contact and walls
+  /// Σ S̄ m_p x_p per field, only while a wall has gap_test (plan.wall_gap_test).
+  std::array<std::vector<Vec<D>>, 2> position;
   /// touched_by_contact | touched_by_wall where contact or a wall changed a field's velocity this
   /// step (kept while the plan books contact energy).
   std::vector<std::uint8_t> touched;

@@ -74,8 +74,18 @@ void apply_walls(StepState<D>& state, double dt) {
     const bool holds = wall.kind != WallKind::contact && advance < 0.0;
     const Vec<D> held_shift = wall_shift - (holds ? advance : 0.0) * wall.normal;
     const Vec<D> wall_point = wall.point + held_shift;
+    // A node behind the plane is not material behind it: a node carries mass from particles up to
+    // a support's width away, so a moving wall tested on node positions reaches the material up
+    // to a cell early, holds it through the node row it has passed and takes the next row at
+    // once when its plane crosses the next node line. A platen then knocks a grain ahead of it
+    // once per cell of travel (docs/verification.md, "Known shortfalls"). With gap_test the
+    // wall also considers the node row in front of its plane and acts on a field where that
+    // field's material position is within wall_gap_cells of the plane.
+    const bool by_material = wall.gap_test && wall.kind == WallKind::contact;
+    const double reach = by_material ? state.grid.cell_size : 0.0;
+    const double touching = wall_gap_cells * state.grid.cell_size;
     scratch.nodes.clear();
-    for_each_node_behind_plane<D>(state.grid, wall_point, wall.normal, tolerance,
+    for_each_node_behind_plane<D>(state.grid, wall_point, wall.normal, tolerance + reach,
                                   [&](std::int64_t i, const Vec<D>& x) {
                                     if (wall.region.contains(x, held_shift, tolerance))
                                       scratch.nodes.push_back(i);
@@ -94,6 +104,9 @@ void apply_walls(StepState<D>& state, double dt) {
       for (int f = 0; f < fields; ++f) {
         const double m = state.nodes.mass[f][i];
         if (m <= state.negligible_mass) continue;
+        if (by_material &&
+            (state.nodes.position[f][i] / m - wall_point).dot(wall.normal) > touching)
+          continue;
         double friction = 0.0;
         const Vec<D> change = wall_change(state, wall, wall_velocity, f, i, dt, friction);
         state.nodes.velocity[f][i] += change;

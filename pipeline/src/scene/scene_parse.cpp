@@ -300,7 +300,7 @@ mpm::VelocityHistory<2> read_history(const Section& h) {
 
 mpm::WallSpec<2> read_wall(const Section& w) {
   w.allow_only({"name", "point", "normal", "kind", "friction", "velocity", "thermal", "region",
-                "stiffness"});
+                "stiffness", "gap_test"});
   mpm::WallSpec<2> wall;
   wall.name = w.name("name");
   wall.point = w.vector("point", QK::length);
@@ -335,6 +335,12 @@ mpm::WallSpec<2> read_wall(const Section& w) {
       w.fail("friction", "expected no friction for kind = \"" + kind +
                              "\" (friction applies to contact walls only)");
     wall.friction = read_friction(w, "friction");
+  }
+  if (w.has("gap_test")) {
+    if (kind != "contact")
+      w.fail("gap_test", "expected no gap_test for kind = \"" + kind +
+                             "\" (the position test applies to contact walls only)");
+    wall.gap_test = w.optional_bool("gap_test").value_or(false);
   }
   if (auto h = w.optional_table("velocity")) wall.velocity = read_history(*h);
   if (auto r = w.optional_table("region")) {

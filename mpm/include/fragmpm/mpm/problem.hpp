@@ -108,7 +108,17 @@ struct WallSpec {
   WallRegion<D> region;  ///< nodes the wall acts on
   /// Penalty walls only: κ_n of [XLS21] eq. (83), contact pressure per penetration depth [Pa/m].
   double penalty_stiffness = 0.0;
+  /// Contact walls only: a node touches the wall when its material does, i.e. when the
+  /// mass-weighted position of each field's particles at the node is within wall_gap_cells cells
+  /// of the plane ([NBS18] eq. (8) with the wall as a partner of zero extent), instead of when
+  /// the node itself lies behind the plane (walls.cpp says why).
+  bool gap_test = false;
 };
+
+/// Distance from a contact wall's plane, in cells, within which a field's material position at a
+/// node counts as touching: half of the 0.8 h that [NBS18] eq. (8) allows between the material
+/// positions of two fields, whose surfaces each lie about 0.4 h beyond them.
+inline constexpr double wall_gap_cells = 0.4;
 
 /// A surface traction on part of a body's boundary, applied as particle forces f_p = t(τ) a_p with
 /// a_p the boundary length (2D) or area (3D) the particle carries. t is piecewise linear in time
