@@ -20,6 +20,44 @@ bool partitioning_active(const Problem<D>& problem) {
   return false;
 }
 
+namespace {
+
+/// Whether a wall's velocity history ever has a component along its normal: such a wall sweeps
+/// through the grid instead of standing on one node line.
+template <int D>
+bool moves_along_normal(const WallSpec<D>& wall) {
+  const VelocityHistory<D>& v = wall.velocity;
+  const double scale = std::abs(v.from.dot(wall.normal)) + std::abs(v.to.dot(wall.normal)) +
+                       std::abs(v.amplitude.dot(wall.normal));
+  return scale > 0.0;
+}
+
+/// The walls line of the module log. A moving contact wall without the gap test acts on the node
+/// rows its plane has passed, so the material feels it advance one cell at a time (walls.cpp);
+/// the log names such walls, since the platen force then comes in pulses once per cell.
+template <int D>
+std::string walls_reason(const std::vector<WallSpec<D>>& walls) {
+  if (walls.empty()) return "no walls in the scene";
+  std::string reason = std::to_string(walls.size()) + " rigid wall(s)";
+  std::string gap_tested, stepping;
+  for (const WallSpec<D>& w : walls) {
+    if (w.kind != WallKind::contact) continue;
+    if (w.gap_test)
+      gap_tested += (gap_tested.empty() ? "'" : ", '") + w.name + "'";
+    else if (moves_along_normal(w))
+      stepping += (stepping.empty() ? "'" : ", '") + w.name + "'";
+  }
+  if (!gap_tested.empty())
+    reason += "; " + gap_tested + " touch(es) the material by its position (gap_test)";
+  if (!stepping.empty())
+    reason += "; moving contact wall(s) " + stepping +
+              " without gap_test act on the node rows they have passed, so they advance one "
+              "cell at a time";
+  return reason;
+}
+
+}  // namespace
+
 template <int D>
 std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
   std::vector<ModuleDecision> plan;
@@ -50,9 +88,7 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
                       (D == 3                 ? ""
                        : problem.plane_stress ? ", plane stress ([physics] plane = \"stress\")"
                                               : ", plane strain")});
-  plan.push_back({"walls", !problem.walls.empty(),
-                  problem.walls.empty() ? "no walls in the scene"
-                                        : std::to_string(problem.walls.size()) + " rigid wall(s)"});
+  plan.push_back({"walls", !problem.walls.empty(), walls_reason(problem.walls)});
   plan.push_back({"loads", !problem.loads.empty(),
                   problem.loads.empty()
                       ? "no traction loads"

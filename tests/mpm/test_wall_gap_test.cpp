@@ -89,3 +89,23 @@ TEST(WallGapTest, OnlyContactWallsTakeIt) {
     EXPECT_NE(std::string(e.what()).find("gap_test"), std::string::npos) << e.what();
   }
 }
+
+TEST(WallGapTest, TheModuleLogNamesAMovingWallThatAdvancesByCells) {
+  // The platen moves along its normal: without the gap test the log warns that it advances one
+  // cell at a time; with it the log says the wall touches by position. A fixed wall is not named.
+  auto walls_line = [](const std::string& text) {
+    for (const auto& m : mpm::plan_modules<2>(pipeline::parse_scene(text, "platen.toml")))
+      if (m.module == "walls") return m.reason;
+    return std::string();
+  };
+  std::string gap_tested = platen_onto_block;
+  gap_tested.insert(gap_tested.find("velocity = {"), "gap_test = true\n");
+  std::string fixed = platen_onto_block;
+  fixed.replace(fixed.find("\"-10 m/s\""), 9, "\"0 m/s\"");
+  const std::string by_node = walls_line(platen_onto_block);
+  const std::string by_material = walls_line(gap_tested);
+  EXPECT_NE(by_node.find("'platen' without gap_test"), std::string::npos) << by_node;
+  EXPECT_EQ(by_material.find("without gap_test"), std::string::npos) << by_material;
+  EXPECT_NE(by_material.find("'platen' touch"), std::string::npos) << by_material;
+  EXPECT_EQ(walls_line(fixed).find("'platen'"), std::string::npos) << walls_line(fixed);
+}
