@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 
 #include "fragmpm/pipeline/verify.hpp"
 
@@ -70,4 +71,36 @@ TEST(VerifyReport, TargetsDecidePassOrFail) {
   below.target_high = std::numeric_limits<double>::infinity();
   below.value = 0.5;  // only a lower bound: 0.5 < 0.98 misses it
   EXPECT_FALSE(report_case(dir, "case", {row, below}));
+}
+
+// `--variant` / `--level`: a selection runs only what it names, keeps the full table's CSV, and
+// refuses a name or level the case does not have.
+TEST(VerifySelection, PicksNamedRunsAndRefusesUnknownOnes) {
+  VerifyOptions options;
+  EXPECT_TRUE(selected(options, "anything", 3));  // no selection: every run
+  options.variants = {"b"};
+  EXPECT_TRUE(selected(options, "b", 0));
+  EXPECT_FALSE(selected(options, "a", 0));
+  options.level = 1;
+  EXPECT_TRUE(selected(options, "b", 1));
+  EXPECT_FALSE(selected(options, "b", 0));
+  EXPECT_NO_THROW(check_selection(options, "case", {"a", "b"}, 2));
+  EXPECT_THROW(check_selection(options, "case", {"a", "b"}, 1), std::invalid_argument);
+  options.level = -1;
+  options.variants = {"c"};
+  EXPECT_THROW(check_selection(options, "case", {"a", "b"}, 2), std::invalid_argument);
+
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "fragmpm_test_verify_selection";
+  std::filesystem::remove_all(dir);
+  const VerifyRow row{.case_name = std::string("case"),
+                      .variant = std::string("b"),
+                      .metric = std::string("metric"),
+                      .value = 1.0,
+                      .reference = 1.0,
+                      .error = 0.0};
+  EXPECT_TRUE(report_case(dir.string(), "case", {row}, "b-level1"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "case-b-level1.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "case.csv"));
+  std::filesystem::remove_all(dir);
 }

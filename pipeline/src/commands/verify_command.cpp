@@ -1,6 +1,7 @@
 // `fragmpm verify [CASE…] [--quick] [--stability] [-o DIR]`.
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -85,6 +86,8 @@ struct VerifyArguments {
   std::vector<std::string> scenes;
   bool list = false;
   int threads = 0;
+  std::vector<std::string> variants;
+  int level = -1;
 };
 
 int execute(const VerifyArguments& args) {
@@ -93,6 +96,9 @@ int execute(const VerifyArguments& args) {
   options.quick = args.quick;
   options.threads = args.threads;
   options.output_directory = args.output;
+  options.variants = args.variants;
+  options.level = args.level;
+  const bool selecting = !args.variants.empty() || args.level >= 0;
   if (args.list) {
     for (const auto& c : verify_cases())
       std::printf("%-16s %s\n", c.name.c_str(), c.description.c_str());
@@ -142,14 +148,45 @@ int execute(const VerifyArguments& args) {
   }
   if (selected.empty())
     for (const auto& c : verify_cases()) selected.push_back(&c);
+  // The selection's CSV name: DIR/CASE-VARIANT…-levelN.csv beside a full run's DIR/CASE.csv.
+  std::string selection;
+  if (selecting) {
+    const auto& selectable = variant_selection_cases();
+    std::string names;
+    for (const std::string& name : selectable) names += " " + name;
+    if (args.cases.empty()) {
+      std::fprintf(stderr,
+                   "fragmpm verify: --variant and --level need a case; cases that offer "
+                   "them:%s\n",
+                   names.c_str());
+      return 2;
+    }
+    for (const VerifyCase* c : selected)
+      if (std::find(selectable.begin(), selectable.end(), c->name) == selectable.end()) {
+        std::fprintf(stderr,
+                     "fragmpm verify: case '%s' runs all its variants and levels together; "
+                     "--variant and --level apply to:%s\n",
+                     c->name.c_str(), names.c_str());
+        return 2;
+      }
+    for (std::string variant : args.variants) {
+      std::replace(variant.begin(), variant.end(), '/', '-');  // "10m/s" in a file name
+      selection += (selection.empty() ? "" : "-") + variant;
+    }
+    if (args.level >= 0)
+      selection += (selection.empty() ? "level" : "-level") + std::to_string(args.level);
+  }
   std::vector<std::string> missed;
   for (const VerifyCase* c : selected) {
     try {
-      if (!report_case(args.output, c->name, c->run(options))) missed.push_back(c->name);
+      if (!report_case(args.output, c->name, c->run(options), selection)) missed.push_back(c->name);
     } catch (const SceneError& e) {
       std::fprintf(stderr, "fragmpm verify %s: scene error: %s\n", c->name.c_str(), e.what());
       return 2;
     } catch (const PipelineError& e) {  // a data file of the source tree is missing
+      std::fprintf(stderr, "fragmpm verify %s: %s\n", c->name.c_str(), e.what());
+      return 2;
+    } catch (const std::invalid_argument& e) {  // the selection names what the case lacks
       std::fprintf(stderr, "fragmpm verify %s: %s\n", c->name.c_str(), e.what());
       return 2;
     } catch (const std::runtime_error& e) {
@@ -182,6 +219,15 @@ void add_verify_command(CLI::App& app, CommandResult& result) {
                      "spinning-disk)");
   verify->add_flag("--list", args->list, "List the cases");
   verify->add_option("--threads", args->threads, "OpenMP threads");
+  verify->add_option("--variant", args->variants,
+                     "Only this variant of the case (repeatable; plate-impact, sphere-beam and "
+                     "two-rings, whose runs at the papers' resolutions take up to hours each; the "
+                     "case's variants are the first column of its table). Writes "
+                     "DIR/CASE-VARIANT.csv");
+  verify
+      ->add_option("--level", args->level,
+                   "Only this level of the case (0 the coarsest; with the cases of --variant)")
+      ->check(CLI::NonNegativeNumber);
   verify->callback([args, &result] { result.exit_code = execute(*args); });
 }
 

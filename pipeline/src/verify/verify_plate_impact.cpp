@@ -186,9 +186,14 @@ std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options) {
        "{ gamma_1111 = 1, gamma_2222 = 80, gamma_1122 = 0, gamma_1212 = 74, orientation = \"-30 "
        "deg\" }",
        2.121}};
+  std::vector<std::string> names;
+  for (const PlateVariant& v : variants) names.push_back(v.name);
+  check_selection(options, "plate-impact", names, 1);
   std::vector<VerifyRow> rows;
   for (const PlateVariant& v : variants) {
-    if (options.quick && v.anisotropy) continue;
+    if (!selected(options, v.name, 0)) continue;
+    // `--quick` runs the isotropic case unless a variant is named.
+    if (options.quick && v.anisotropy && options.variants.empty()) continue;
     for (auto& r : run_plate(v, case_directory(options, "plate-impact"))) rows.push_back(r);
   }
   return rows;

@@ -22,9 +22,10 @@ double observed_order(const VerifyRow& coarse, const VerifyRow& fine) {
 }
 
 bool report_case(const std::string& directory, const std::string& case_name,
-                 const std::vector<VerifyRow>& rows) {
+                 const std::vector<VerifyRow>& rows, const std::string& selection) {
   std::filesystem::create_directories(directory);
-  const std::string path = (std::filesystem::path(directory) / (case_name + ".csv")).string();
+  const std::string stem = selection.empty() ? case_name : case_name + "-" + selection;
+  const std::string path = (std::filesystem::path(directory) / (stem + ".csv")).string();
   std::ofstream csv(path);
   csv << "case,variant,level,cell_size_m,particles,dt_s,steps,wall_s,metric,value,reference,"
          "error\n";

@@ -22,6 +22,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
@@ -257,8 +258,14 @@ std::vector<VerifyRow> verify_sphere_beam(const VerifyOptions& options) {
   // set starts with case (i) at the paper's cell, the run its energy check is about, and prints
   // each run's rows as soon as it ends (each run at the paper's cell takes about an hour on 2
   // cores).
+  std::vector<std::string> names;
+  for (const BeamVariant& v : variants) names.push_back(v.name);
+  check_selection(options, "sphere-beam", names, options.quick ? 1 : 2);
   std::vector<VerifyRow> rows;
+  int runs = 0;
   auto add = [&](const BeamVariant& v, double cell_size, int level) {
+    if (!selected(options, v.name, level)) return;
+    ++runs;
     const std::string figures = case_directory(options, "sphere-beam");
     for (auto& r : run_beam(v, cell_size, level, figures)) {
       if (!options.quick)
@@ -271,6 +278,10 @@ std::vector<VerifyRow> verify_sphere_beam(const VerifyOptions& options) {
   for (const BeamVariant& v : variants) add(v, 0.25e-3, 0);
   if (!options.quick)
     for (const BeamVariant& v : {variants[1], variants[2]}) add(v, 0.125e-3, 1);
+  if (runs == 0)
+    throw std::invalid_argument(
+        "--variant/--level: sphere-beam runs isotropic-partitioned at "
+        "level 0 only");
   return rows;
 }
 

@@ -155,9 +155,14 @@ std::vector<VerifyRow> verify_two_rings(const VerifyOptions& options) {
   // [KT19] Fig. 18 (10 m/s) and Fig. 20 (20 m/s) show the phase field at these times [µs].
   const std::vector<double> slow_times{0, 75, 95, 200, 400, 625};
   const std::vector<double> fast_times{0, 30, 45, 60, 400, 625};
+  check_selection(options, "two-rings", {"10m/s", "20m/s"}, options.quick ? 1 : 2);
   for (int level = 0; level < (options.quick ? 1 : 2); ++level) {
-    for (auto& r : run_rings(10.0, 2, cells[level], level, slow_times, figures)) rows.push_back(r);
-    for (auto& r : run_rings(20.0, 5, cells[level], level, fast_times, figures)) rows.push_back(r);
+    if (selected(options, "10m/s", level))
+      for (auto& r : run_rings(10.0, 2, cells[level], level, slow_times, figures))
+        rows.push_back(r);
+    if (selected(options, "20m/s", level))
+      for (auto& r : run_rings(20.0, 5, cells[level], level, fast_times, figures))
+        rows.push_back(r);
   }
   return rows;
 }

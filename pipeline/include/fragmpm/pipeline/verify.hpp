@@ -39,7 +39,24 @@ struct VerifyOptions {
   /// Where cases that write more than CASE.csv (the Hertz pressure profile, the Brazilian CDFs)
   /// put their files.
   std::string output_directory = "verify-out";
+  /// `--variant`: only these variants of a case that offers the choice (variant_selection_cases);
+  /// empty: every variant.
+  std::vector<std::string> variants;
+  /// `--level`: only this level of the case (0 the coarsest); −1: every level the run runs.
+  int level = -1;
 };
+
+/// The cases whose runs `--variant` and `--level` can pick among: the long phase-field runs at
+/// the papers' resolutions, which take up to hours each.
+const std::vector<std::string>& variant_selection_cases();
+
+/// Whether the run of `variant` at `level` belongs to the selection of `options`.
+bool selected(const VerifyOptions& options, const std::string& variant, int level);
+
+/// Throws std::invalid_argument, naming what the case has, when `options` names a variant that
+/// is not among `variants` or a level outside [0, levels).
+void check_selection(const VerifyOptions& options, const std::string& case_name,
+                     const std::vector<std::string>& variants, int levels);
 
 struct VerifyCase {
   std::string name;
@@ -117,10 +134,12 @@ std::vector<VerifyRow> verify_disk_squish(const VerifyOptions& options);
 /// undefined.
 double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
 
-/// Writes DIR/CASE.csv (creating DIR) and prints the table with orders and PASS/FAIL against each
-/// row's target to stdout. Returns false when a row with a target missed it.
+/// Writes DIR/CASE.csv (DIR/CASE-SELECTION.csv when `selection` is not empty, so that a run of
+/// one variant keeps the full table of an earlier run; creating DIR) and prints the table with
+/// orders and PASS/FAIL against each row's target to stdout. Returns false when a row with a target
+/// missed it.
 bool report_case(const std::string& directory, const std::string& case_name,
-                 const std::vector<VerifyRow>& rows);
+                 const std::vector<VerifyRow>& rows, const std::string& selection = "");
 
 struct StabilityResult {
   std::string scene;
