@@ -130,8 +130,9 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
        phase_field_reason.empty()
            ? "no phase-field material: no nodal phase-field solve"
            : "AT2 phase field ([KT19]) on " + phase_field_reason +
-                 ": nodal system solved each step by conjugate gradients (by sparse LDLT once they "
-                 "need more than 300 iterations), one field per body; "
+                 ": nodal system solved each step by conjugate gradients, preconditioned by an "
+                 "exact solve on the cracked particles' nodes (by sparse LDLT of the whole system "
+                 "once they need more than 300 iterations), one field per body; "
                  "Hencky elasticity with the spectral tension-compression split"});
   const std::size_t bodies = problem.body_names.size();
   std::string partition_reason;

@@ -323,7 +323,8 @@ mpm::Problem<2> cracked_strip() {
   return problem;
 }
 
-/// One step of the cracked strip from its constructor's state, solved directly or by Jacobi CG.
+/// One step of the cracked strip from its constructor's state, solved directly or by conjugate
+/// gradients (with the crack block, step/crack_block_preconditioner.hpp).
 std::pair<mpm::Particles<2>, mpm::PhaseFieldWork> step_cracked_strip(bool direct) {
   mpm::Solver<2> solver(cracked_strip());
   mpm::PhaseFieldWarmStart<2> start;
@@ -340,38 +341,43 @@ std::pair<mpm::Particles<2>, mpm::PhaseFieldWork> step_cracked_strip(bool direct
 
 }  // namespace
 
-TEST(PhaseField, DirectSolveAgreesWithJacobi) {
+TEST(PhaseField, DirectSolveAgreesWithConjugateGradients) {
   // Both solve K c = f ([KT19] §4.3: conjugate gradients to the relative residual 10⁻⁶; the
   // direct LDLᵀ of K + 10⁻¹² diag(K) to rounding): the particles' d agree to the tolerance's
   // order, the open crack included.
-  const auto [jacobi, jacobi_work] = step_cracked_strip(false);
+  const auto [iterative, iterative_work] = step_cracked_strip(false);
   const auto [direct, direct_work] = step_cracked_strip(true);
-  EXPECT_EQ(jacobi_work.direct_runs, 0);
-  EXPECT_GT(jacobi_work.iterations, 0);
+  EXPECT_EQ(iterative_work.direct_runs, 0);
+  EXPECT_GT(iterative_work.iterations, 0);
   EXPECT_EQ(direct_work.direct_runs, 1);
   EXPECT_EQ(direct_work.iterations, 0);
   double largest = 0.0, worst = 0.0;
-  for (std::size_t p = 0; p < jacobi.size(); ++p) {
-    largest = std::max(largest, jacobi.damage[p]);
-    worst = std::max(worst, std::abs(jacobi.damage[p] - direct.damage[p]));
+  for (std::size_t p = 0; p < iterative.size(); ++p) {
+    largest = std::max(largest, iterative.damage[p]);
+    worst = std::max(worst, std::abs(iterative.damage[p] - direct.damage[p]));
   }
   EXPECT_GT(largest, 0.99);
   EXPECT_LT(worst, 1e-5);
 }
 
-TEST(PhaseField, HardSolveHandsTheNextToTheDirectSolve) {
-  // The constructor's Jacobi solve of the cracked strip needs more than jacobi_iteration_limit
-  // iterations (measured 934), so every later solve is direct; a mild history stays with Jacobi.
+TEST(PhaseField, OpenCrackNeedsFewIterationsWithTheCrackBlock) {
+  // The open crack's history (10⁷ G_c/(4 l₀)) gives K eigenvalues of order 10⁷ and of order 1 in
+  // the same rows (step/crack_block_preconditioner.hpp): Jacobi alone needed 934 iterations on the
+  // constructor's solve of this strip. With the cracked particles' unknowns solved exactly the
+  // condition no longer depends on the history: measured 43, and none over the next three steps,
+  // which start from the last solution of a strip that hardly moves; no solve is direct.
   mpm::Solver<2> solver(cracked_strip());
   const mpm::PhaseFieldWork first = solver.phase_field_work();
   ASSERT_EQ(first.runs, 1);
   EXPECT_EQ(first.direct_runs, 0);
-  EXPECT_GT(first.iterations, 300);
+  EXPECT_LT(first.iterations, 100);
   const mpm::PhaseFieldWarmStart<2> start = solver.phase_field_warm_start();
-  EXPECT_TRUE(start.direct);
+  EXPECT_FALSE(start.direct);
   EXPECT_FALSE(start.empty());
   for (int s = 0; s < 3; ++s) ASSERT_FALSE(solver.step());
-  EXPECT_EQ(solver.phase_field_work().direct_runs, 3);
+  const mpm::PhaseFieldWork next = solver.phase_field_work();
+  EXPECT_EQ(next.direct_runs, 0);
+  EXPECT_LE(next.iterations - first.iterations, first.iterations);
 
   mpm::Solver<2> bar(pulled_bar());
   for (int s = 0; s < 40; ++s) ASSERT_FALSE(bar.step());
@@ -385,6 +391,9 @@ TEST(PhaseField, DirectSolveKeepsItsOrderingWhileTheCouplingsHold) {
   // one agree exactly on the third. Over three steps the strip's particles move far less than a
   // cell, so only the first direct solve analyses.
   mpm::Solver<2> uninterrupted(cracked_strip());
+  mpm::PhaseFieldWarmStart<2> direct;
+  direct.direct = true;
+  uninterrupted.restore(0.0, 0, uninterrupted.accumulators(), uninterrupted.particles(), direct);
   for (int s = 0; s < 2; ++s) ASSERT_FALSE(uninterrupted.step());
   mpm::Solver<2> restarted(cracked_strip());
   restarted.restore(uninterrupted.time(), uninterrupted.step_count(), uninterrupted.accumulators(),

@@ -203,6 +203,8 @@ void solve_phase_field(StepState<D>& state) {
   }
   pf.rhs.setZero();
   pf.guess.setZero();
+  std::vector<char>& stiff = pf.solver.preconditioner().stiff;
+  reset_array(stiff, m, char{0});
   scatter_particles_where<D, Kind>(state, is_phase_field, [&](std::int64_t p, const Stencil<D>& s) {
     const std::size_t material = static_cast<std::size_t>(P.material[p]);
     const double volume = P.volume0[p];
@@ -238,8 +240,10 @@ void solve_phase_field(StepState<D>& state) {
       entry_of[used] = e;
       ++used;
     }
+    const bool cracked = drive > stiff_history_ratio * pf.local_coefficient[material];
     for (int a = 0; a < used; ++a) {
       const std::size_t r = static_cast<std::size_t>(row[a]);
+      if (cracked) stiff[r] = 1;
       pf.rhs[row[a]] += source * weight[a];
       pf.guess[row[a]] += volume * weight[a] * (1.0 - P.damage[p]);
       pf.guess_weight[r] += volume * weight[a];
@@ -385,6 +389,7 @@ void solve_phase_field(StepState<D>& state) {
   }
   if (!pf.direct) {
     pf.solver.setTolerance(phase_field_tolerance);
+    pf.solver.preconditioner().pivot_shift = crack_block_pivot_shift;
     pf.solver.compute(matrix);
     pf.solution = pf.solver.solveWithGuess(pf.rhs, pf.guess);
     pf.iterations = static_cast<int>(pf.solver.iterations());

@@ -1,7 +1,8 @@
 #pragma once
 // What the phase-field stage keeps between steps: the per-material coefficients of the nodal
 // equation, the unknowns of the active grid (one per node and body), the assembled system and the
-// conjugate-gradient solver. Exists only when a material has the phase-field law.
+// conjugate-gradient solver with its crack-block preconditioner. Exists only when a material has
+// the phase-field law.
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -11,6 +12,7 @@
 
 #include "fragmpm/mpm/phase_field_warm_start.hpp"
 #include "fragmpm/mpm/problem.hpp"
+#include "step/crack_block_preconditioner.hpp"
 
 namespace fragmpm::mpm {
 
@@ -22,28 +24,29 @@ inline constexpr char material_phase_field = 2;
 /// 10⁻⁶).
 inline constexpr double phase_field_tolerance = 1e-6;
 
-/// When the nodal system is solved directly. Jacobi-preconditioned conjugate gradients cost
+/// When the nodal system is solved directly. Conjugate gradients preconditioned by Jacobi cost
 /// nothing to set up and suffice while the history field is mild (`fragmpm bench`, 10⁵ particles:
-/// about 12 iterations a step). Once cracks are open they do not: the history of their particles
-/// reaches 10⁵ G_c/(4 l₀), and the particle quadrature leaves K only semi-definite where a few
-/// particles carry more nodes than their values and gradients fix (an isolated particle's 3 × 3
-/// B-spline nodes see rank 3), so in floating point its smallest pivots are rounding noise
+/// about 12 iterations a step). Once cracks are open Jacobi alone does not: the history of their
+/// particles reaches 10⁵ G_c/(4 l₀), and the particle quadrature leaves K only semi-definite where
+/// a few particles carry more nodes than their values and gradients fix (an isolated particle's
+/// 3 × 3 B-spline nodes see rank 3), so in floating point its smallest pivots are rounding noise
 /// (LDLᵀ of the colliding rings' system at 450 µs, 10 546 unknowns: 11 pivots between −10⁻¹¹ and
-/// −10⁻¹⁴ against diagonals up to 2.7 × 10⁴). There Jacobi took 1 177 iterations (0.21 s), an
-/// incomplete Cholesky factor 592 (0.39 s) and 300 to 1 600 a step over the 130 µs before, while a
-/// sparse LDLᵀ (Eigen's SimplicialLDLT, AMD order) solves the same system in 0.055 s to a relative
-/// residual of 3 × 10⁻¹⁴, whatever the history: at 300 µs it took 0.050 s against Jacobi's 668
-/// iterations (0.11 s, 0.17 ms each). A Jacobi solve past `jacobi_iteration_limit`, the cost of
-/// about one factorisation at that size, hands every later solve to the factorisation: the
-/// history only grows, so the conditioning that made Jacobi slow does not go away.
-/// Tried and not kept: conjugate gradients preconditioned with an earlier step's factor (rescaled
-/// to the new diagonal, a factorisation only when they stall). On the rings at 412 µs (10 502
-/// unknowns) they needed 11 iterations one step after a factorisation and 15-20 three steps
-/// after, at about 2.5 ms each (two triangular solves) against a 45 ms factorisation: 300 steps
-/// took 17.9 s against 17.4 s factorising every step. Nor does a supernodal factorisation pay
-/// there: on the same system (248 000 non-zeros) this LDLᵀ factorises in 34 ms, SuiteSparse's
-/// CHOLMOD (supernodal, OpenBLAS on 2 threads) in 35 ms with AMD and 27 ms with nested
-/// dissection, whose analysis (63 ms) only pays back while the pattern holds.
+/// −10⁻¹⁴ against diagonals up to 2.7 × 10⁴). There Jacobi took 1 177 iterations (0.21 s) and
+/// an incomplete Cholesky factor 592 (0.39 s), while a sparse LDLᵀ (Eigen's SimplicialLDLT, AMD
+/// order) solves the same system in 0.055 s. The conjugate gradients are therefore preconditioned
+/// with an exact solve on the cracked particles' unknowns (crack_block_preconditioner.hpp), which
+/// takes the rings from 400 µs on in 12-70 iterations a step (14 ms, against 58 ms for the
+/// factorisation of the whole system). Should a solve still need more than
+/// `jacobi_iteration_limit` iterations, every later solve factorises the whole system: the history
+/// only grows, so the conditioning that made the iteration slow does not go away.
+/// Tried and not kept: conjugate gradients preconditioned with an earlier step's factor of the
+/// whole system (rescaled to the new diagonal, a factorisation only when they stall). On the rings
+/// at 412 µs (10 502 unknowns) they needed 11 iterations one step after a factorisation and 15-20
+/// three steps after, at about 2.5 ms each (two triangular solves) against a 45 ms factorisation:
+/// 300 steps took 17.9 s against 17.4 s factorising every step. Nor does a supernodal
+/// factorisation pay there: on the same system (248 000 non-zeros) this LDLᵀ factorises in 34 ms,
+/// SuiteSparse's CHOLMOD (supernodal, OpenBLAS on 2 threads) in 35 ms with AMD and 27 ms with
+/// nested dissection, whose analysis (63 ms) only pays back while the pattern holds.
 inline constexpr int jacobi_iteration_limit = 300;
 /// Relative diagonal shift of the direct solve (phase_field_stage.cpp, step 5).
 inline constexpr double phase_field_pivot_shift = 1e-12;
@@ -86,7 +89,7 @@ struct PhaseFieldState {
   std::vector<double> values;
   std::vector<double> shifted_values;  ///< values with the direct solve's diagonal shift
   Eigen::VectorXd rhs, guess, solution;
-  Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper> solver;
+  Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, CrackBlockPreconditioner> solver;
   /// The direct solve: K is symmetric, so its compressed rows are also its compressed columns.
   using ColumnMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   Eigen::SimplicialLDLT<ColumnMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> direct_solver;
