@@ -120,12 +120,13 @@ class CrackBlockPreconditioner {
     for (Eigen::Index i = 0; i < residual.size(); ++i)
       z[i] = inverse_diagonal_[static_cast<std::size_t>(i)] * residual[i];
     if (block_unknowns_.empty() || factor_.info() != Eigen::Success) return z;
-    Eigen::VectorXd block_residual(block_size());
+    // The block's vectors are kept between iterations (sized once per compute()).
+    block_residual_.resize(block_size());
     for (std::size_t b = 0; b < block_unknowns_.size(); ++b)
-      block_residual[static_cast<Eigen::Index>(b)] = residual[block_unknowns_[b]];
-    const Eigen::VectorXd block_z = factor_.solve(block_residual);
+      block_residual_[static_cast<Eigen::Index>(b)] = residual[block_unknowns_[b]];
+    block_z_ = factor_.solve(block_residual_);
     for (std::size_t b = 0; b < block_unknowns_.size(); ++b)
-      z[block_unknowns_[b]] = block_z[static_cast<Eigen::Index>(b)];
+      z[block_unknowns_[b]] = block_z_[static_cast<Eigen::Index>(b)];
     return z;
   }
 
@@ -139,6 +140,7 @@ class CrackBlockPreconditioner {
   std::vector<double> block_values_;
   std::vector<int> analysed_outer_, analysed_inner_;
   bool pattern_reused_ = false;
+  mutable Eigen::VectorXd block_residual_, block_z_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>, Eigen::Lower,
                         Eigen::AMDOrdering<int>>
       factor_;
