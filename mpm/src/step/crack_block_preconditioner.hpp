@@ -16,7 +16,7 @@
 // system and removes the r-dependence: with P the block diagonal of K_CC (C the unknowns some
 // particle with r > stiff_history_ratio reaches) and diag(K_RR), P⁻¹K is the identity on C plus
 // the C-R coupling of the bounded terms, whose condition does not depend on r. P is symmetric
-// positive definite (K_CC is, with the direct solve's relative pivot shift), as conjugate
+// positive definite (K_CC is, with its relative pivot shift below), as conjugate
 // gradients need. C is the cracks' neighbourhood, a small part of the unknowns, so its
 // factorisation costs a fraction of the whole system's.
 #include <Eigen/SparseCholesky>
@@ -48,15 +48,13 @@ class CrackBlockPreconditioner {
   /// Per unknown of the next system: whether it belongs to the exactly solved block. Set before
   /// the solver's compute(); an empty or all-zero mark gives plain Jacobi.
   std::vector<char> stiff;
-  /// Relative diagonal shift of the block's factorisation (phase_field_pivot_shift).
-  double pivot_shift = 0.0;
+  /// Relative diagonal shift of the block's factorisation.
+  double pivot_shift = crack_block_pivot_shift;
 
   Eigen::Index rows() const { return static_cast<Eigen::Index>(inverse_diagonal_.size()); }
   Eigen::Index cols() const { return rows(); }
   /// Unknowns in the block at the last compute().
   std::int64_t block_size() const { return static_cast<std::int64_t>(block_unknowns_.size()); }
-  /// Whether the last compute() reused the block's ordering (its pattern had not changed).
-  bool pattern_reused() const { return pattern_reused_; }
 
   template <typename MatrixType>
   CrackBlockPreconditioner& analyzePattern(const MatrixType&) {
@@ -104,8 +102,9 @@ class CrackBlockPreconditioner {
     const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::ColMajor, int>> block(
         block_size(), block_size(), static_cast<Eigen::Index>(block_values_.size()),
         block_outer_.data(), block_inner_.data(), block_values_.data());
-    pattern_reused_ = analysed_outer_ == block_outer_ && analysed_inner_ == block_inner_;
-    if (!pattern_reused_) {
+    // The AMD ordering depends on the block's pattern alone (as the whole system's,
+    // phase_field_stage.cpp): a step with the last step's pattern only refactorises.
+    if (analysed_outer_ != block_outer_ || analysed_inner_ != block_inner_) {
       factor_.analyzePattern(block);
       analysed_outer_ = block_outer_;
       analysed_inner_ = block_inner_;
@@ -139,7 +138,6 @@ class CrackBlockPreconditioner {
   std::vector<int> block_outer_, block_inner_;
   std::vector<double> block_values_;
   std::vector<int> analysed_outer_, analysed_inner_;
-  bool pattern_reused_ = false;
   mutable Eigen::VectorXd block_residual_, block_z_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>, Eigen::Lower,
                         Eigen::AMDOrdering<int>>

@@ -389,7 +389,6 @@ void solve_phase_field(StepState<D>& state) {
   }
   if (!pf.direct) {
     pf.solver.setTolerance(phase_field_tolerance);
-    pf.solver.preconditioner().pivot_shift = crack_block_pivot_shift;
     pf.solver.compute(matrix);
     pf.solution = pf.solver.solveWithGuess(pf.rhs, pf.guess);
     pf.iterations = static_cast<int>(pf.solver.iterations());
