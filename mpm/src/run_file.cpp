@@ -485,7 +485,8 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
     g.write("phase_field_node", nodes, {m, d});
     g.write("phase_field_field", pf.field, {m});
     g.write("phase_field_solution", pf.solution, {m});
-    g.set_attribute("phase_field_direct", std::int64_t{pf.direct});
+    g.set_attribute("phase_field_direct_solves_left", std::int64_t{pf.direct_solves_left});
+    g.set_attribute("phase_field_direct_run", std::int64_t{pf.direct_run});
   } else {
     for (const char* name : {"phase_field_node", "phase_field_field", "phase_field_solution"})
       if (g.exists(name)) g.remove(name);
@@ -558,8 +559,15 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
     pf.node.resize(m);
     for (std::size_t r = 0; r < m; ++r)
       for (std::size_t k = 0; k < d; ++k) pf.node[r][static_cast<int>(k)] = nodes[r * d + k];
-    pf.direct =
-        g.has_attribute("phase_field_direct") && g.attribute_int64("phase_field_direct") != 0;
+    if (g.has_attribute("phase_field_direct_solves_left")) {
+      pf.direct_solves_left =
+          static_cast<std::int32_t>(g.attribute_int64("phase_field_direct_solves_left"));
+      pf.direct_run = static_cast<std::int32_t>(g.attribute_int64("phase_field_direct_run"));
+    } else if (g.has_attribute("phase_field_direct") &&
+               g.attribute_int64("phase_field_direct") != 0) {
+      // Checkpoints from when a direct solve stayed direct for good: a first run of them.
+      pf.direct_solves_left = pf.direct_run = first_direct_run;
+    }
   }
   return c;
 }

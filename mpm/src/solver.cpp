@@ -164,6 +164,7 @@ struct Solver<D>::Impl {
     ++phase_field_work.runs;
     phase_field_work.iterations += state.phase_field->iterations;
     phase_field_work.direct_runs += state.phase_field->direct ? 1 : 0;
+    phase_field_work.stopped_at_limit += state.phase_field->stopped_at_limit ? 1 : 0;
     phase_field_work.reused_orderings +=
         state.phase_field->direct && state.phase_field->pattern_reused ? 1 : 0;
   }

@@ -328,7 +328,7 @@ mpm::Problem<2> cracked_strip() {
 std::pair<mpm::Particles<2>, mpm::PhaseFieldWork> step_cracked_strip(bool direct) {
   mpm::Solver<2> solver(cracked_strip());
   mpm::PhaseFieldWarmStart<2> start;
-  start.direct = direct;
+  start.direct_solves_left = direct ? 1 : 0;
   solver.restore(0.0, 0, solver.accumulators(), solver.particles(), start);
   const mpm::PhaseFieldWork before = solver.phase_field_work();
   EXPECT_FALSE(solver.step());
@@ -372,7 +372,7 @@ TEST(PhaseField, OpenCrackNeedsFewIterationsWithTheCrackBlock) {
   EXPECT_EQ(first.direct_runs, 0);
   EXPECT_LT(first.iterations, 100);
   const mpm::PhaseFieldWarmStart<2> start = solver.phase_field_warm_start();
-  EXPECT_FALSE(start.direct);
+  EXPECT_EQ(start.direct_solves_left, 0);
   EXPECT_FALSE(start.empty());
   for (int s = 0; s < 3; ++s) ASSERT_FALSE(solver.step());
   const mpm::PhaseFieldWork next = solver.phase_field_work();
@@ -384,6 +384,29 @@ TEST(PhaseField, OpenCrackNeedsFewIterationsWithTheCrackBlock) {
   EXPECT_EQ(bar.phase_field_work().direct_runs, 0);
 }
 
+TEST(PhaseField, DirectSolvesEndAndConjugateGradientsResume) {
+  // A run of direct solves (after a solve reached the iteration limit) lasts its length; then the
+  // conjugate gradients with the crack block try again and, on this strip, converge well within
+  // the limit (from the last direct solution, which the strip's slow motion leaves within the
+  // tolerance), so the solves stay iterative and the run's length is forgotten.
+  mpm::Solver<2> solver(cracked_strip());
+  mpm::PhaseFieldWarmStart<2> start = solver.phase_field_warm_start();
+  start.direct_solves_left = 2;
+  start.direct_run = mpm::first_direct_run;
+  solver.restore(0.0, 0, solver.accumulators(), solver.particles(), start);
+  const mpm::PhaseFieldWork before = solver.phase_field_work();
+  for (int s = 0; s < 2; ++s) ASSERT_FALSE(solver.step());
+  EXPECT_EQ(solver.phase_field_work().direct_runs - before.direct_runs, 2);
+  EXPECT_EQ(solver.phase_field_work().iterations, before.iterations);
+  EXPECT_EQ(solver.phase_field_warm_start().direct_solves_left, 0);
+  for (int s = 0; s < 2; ++s) ASSERT_FALSE(solver.step());
+  const mpm::PhaseFieldWork after = solver.phase_field_work();
+  EXPECT_EQ(after.direct_runs - before.direct_runs, 2);
+  EXPECT_LT(after.iterations - before.iterations, 2 * mpm::phase_field_iteration_limit);
+  EXPECT_EQ(after.stopped_at_limit, 0);
+  EXPECT_EQ(solver.phase_field_warm_start().direct_run, 0);
+}
+
 TEST(PhaseField, DirectSolveKeepsItsOrderingWhileTheCouplingsHold) {
   // AMD ordering and elimination tree depend on the pattern of K alone, so a step whose unknowns
   // and couplings are the last step's factorises with them again, and must give the bits a fresh
@@ -392,7 +415,7 @@ TEST(PhaseField, DirectSolveKeepsItsOrderingWhileTheCouplingsHold) {
   // cell, so only the first direct solve analyses.
   mpm::Solver<2> uninterrupted(cracked_strip());
   mpm::PhaseFieldWarmStart<2> direct;
-  direct.direct = true;
+  direct.direct_solves_left = 3;
   uninterrupted.restore(0.0, 0, uninterrupted.accumulators(), uninterrupted.particles(), direct);
   for (int s = 0; s < 2; ++s) ASSERT_FALSE(uninterrupted.step());
   mpm::Solver<2> restarted(cracked_strip());

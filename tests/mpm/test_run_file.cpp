@@ -189,6 +189,12 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   // F_p⁻¹ of failed material that flowed: present only when a material can flow.
   c.particles.plastic_inverse.assign(c.particles.size(), Mat<2>::Identity());
   c.particles.plastic_inverse[7] << 1.0 / 3.0, 0.25, -1e-300, 3.0;
+  // The phase field's warm start, in the middle of a run of direct solves.
+  c.phase_field.node = {IVec<2>(3, -4), IVec<2>(5, 6)};
+  c.phase_field.field = {0, 2};
+  c.phase_field.solution = {1.0 / 3.0, -1e-300};
+  c.phase_field.direct_solves_left = 17;
+  c.phase_field.direct_run = 128;
   run.write_checkpoint(c);
   // A second checkpoint of the same size is written in place: the file does not grow.
   c.particles.x[0](0) += 1.0;
@@ -225,6 +231,11 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   EXPECT_EQ(q.surface, p.surface);
   EXPECT_EQ(q.body, p.body);
   EXPECT_EQ(q.material, p.material);
+  EXPECT_EQ(r->phase_field.node, c.phase_field.node);
+  EXPECT_EQ(r->phase_field.field, c.phase_field.field);
+  EXPECT_TRUE(same_bits(r->phase_field.solution, c.phase_field.solution));
+  EXPECT_EQ(r->phase_field.direct_solves_left, 17);
+  EXPECT_EQ(r->phase_field.direct_run, 128);
 
   // The checkpoint survives closing and reopening the file.
   run = RunFile<2>::open_existing(path);

@@ -343,18 +343,20 @@ void solve_phase_field(StepState<D>& state) {
   const Eigen::Map<const typename PhaseFieldState<D>::Matrix> matrix(
       unknowns, unknowns, static_cast<Eigen::Index>(nonzeros), pf.outer.data(), pf.inner.data(),
       pf.values.data());
-  // The direct solve, of K + ε diag(K) with ε = phase_field_pivot_shift: K is only semi-definite
-  // (phase_field_state.hpp), and unshifted its LDLᵀ pivots of the directions no particle sees
-  // fall to rounding noise of either sign, which now and then leaves a residual far above the
-  // tolerance. The shift lifts them to 10⁻¹² of their diagonal, a thousand times the rounding,
-  // and moves nothing a particle sees by more than the tolerance: on the rings' systems at 300
-  // and 450 µs the residual against K stays at 4 × 10⁻¹¹ and 2 × 10⁻¹⁰, and the particles' c
-  // differ from the unshifted solve's by 5 × 10⁻¹⁰ and 1.4 × 10⁻⁸ (from the exact solution,
-  // Jacobi's 10⁻⁶ leaves 10⁻⁷ and 10⁻⁵). Should the residual still miss the tolerance,
-  // conjugate gradients solve the step from the usual guess.
-  pf.direct = pf.last.direct;
-  pf.iterations = 0;
-  if (pf.direct) {
+  // Which solve: conjugate gradients with the crack block (phase_field_state.hpp) unless a recent
+  // solve needed more than `phase_field_iteration_limit` iterations; then a run of direct solves
+  // (phase_field_warm_start.hpp) before the next attempt. A solve that stops at the limit is
+  // finished directly, so every step's c meets the tolerance.
+  const auto solve_directly = [&]() -> bool {
+    // The direct solve, of K + ε diag(K) with ε = phase_field_pivot_shift: K is only semi-definite
+    // (phase_field_state.hpp), and unshifted its LDLᵀ pivots of the directions no particle sees
+    // fall to rounding noise of either sign, which now and then leaves a residual far above the
+    // tolerance. The shift lifts them to 10⁻¹² of their diagonal, a thousand times the rounding,
+    // and moves nothing a particle sees by more than the tolerance: on the rings' systems at 300
+    // and 450 µs the residual against K stays at 4 × 10⁻¹¹ and 2 × 10⁻¹⁰, and the particles' c
+    // differ from the unshifted solve's by 5 × 10⁻¹⁰ and 1.4 × 10⁻⁸ (from the exact solution,
+    // Jacobi's 10⁻⁶ leaves 10⁻⁷ and 10⁻⁵). Should the residual still miss the tolerance,
+    // conjugate gradients solve the step.
     size_array(pf.shifted_values, nonzeros);
 #pragma omp parallel for schedule(static)
     for (std::int64_t rr = 0; rr < unknowns; ++rr)
@@ -377,24 +379,46 @@ void solve_phase_field(StepState<D>& state) {
       pf.analysed_inner = pf.inner;
     }
     pf.direct_solver.factorize(shifted);
-    bool solved = false;
     if (pf.direct_solver.info() == Eigen::Success) {
       pf.solution = pf.direct_solver.solve(pf.rhs);
       if (pf.solution.allFinite()) {
         pf.residual = (matrix * pf.solution - pf.rhs).norm() / pf.rhs.norm();
-        solved = pf.residual <= phase_field_tolerance;
+        return pf.residual <= phase_field_tolerance;
       }
     }
-    pf.direct = solved;
-  }
-  if (!pf.direct) {
+    return false;
+  };
+  const auto iterate = [&](int limit) {
     pf.solver.setTolerance(phase_field_tolerance);
+    pf.solver.setMaxIterations(limit);
     pf.solver.compute(matrix);
     pf.solution = pf.solver.solveWithGuess(pf.rhs, pf.guess);
-    pf.iterations = static_cast<int>(pf.solver.iterations());
+    pf.iterations += static_cast<int>(pf.solver.iterations());
     pf.residual = pf.solver.error();
+    return pf.solver.info() == Eigen::Success;
+  };
+  pf.iterations = 0;
+  pf.stopped_at_limit = false;
+  PhaseFieldWarmStart<D>& next = pf.last;
+  if (next.direct_solves_left > 0) {
+    --next.direct_solves_left;
+    pf.direct = solve_directly();
+    if (!pf.direct) iterate(2 * static_cast<int>(unknowns));
+  } else if (iterate(phase_field_iteration_limit)) {
+    pf.direct = false;
+    next.direct_run = 0;
+  } else {
+    pf.stopped_at_limit = true;
+    next.direct_run = std::min(next.direct_run > 0 ? 2 * next.direct_run : first_direct_run,
+                               longest_direct_run);
+    next.direct_solves_left = next.direct_run;
+    pf.direct = solve_directly();
+    // Should the factorisation miss the tolerance too, the iteration goes on from the latest c.
+    if (!pf.direct) {
+      pf.guess = pf.solution;
+      iterate(2 * static_cast<int>(unknowns));
+    }
   }
-  pf.last.direct = pf.last.direct || pf.iterations > jacobi_iteration_limit;
   pf.last.node.resize(m);
   pf.last.field.resize(m);
   pf.last.solution.resize(m);

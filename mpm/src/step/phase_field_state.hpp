@@ -36,9 +36,15 @@ inline constexpr double phase_field_tolerance = 1e-6;
 /// order) solves the same system in 0.055 s. The conjugate gradients are therefore preconditioned
 /// with an exact solve on the cracked particles' unknowns (crack_block_preconditioner.hpp), which
 /// takes the rings from 400 µs on in 12-70 iterations a step (14 ms, against 58 ms for the
-/// factorisation of the whole system). Should a solve still need more than
-/// `jacobi_iteration_limit` iterations, every later solve factorises the whole system: the history
-/// only grows, so the conditioning that made the iteration slow does not go away.
+/// factorisation of the whole system). A solve that reaches `phase_field_iteration_limit`
+/// iterations stops there and the step factorises the whole system instead, and so do the next
+/// solves, a run of them that doubles while the next attempts fail too
+/// (phase_field_warm_start.hpp). The limit is the iteration count that costs about one
+/// factorisation. Until that attempt the history only grows, so whatever made the iteration slow
+/// was not expected to go away, and the first version of this stage factorised for good. But
+/// the hard solves come singly: on the 20 m/s rings at h = 1 mm one solve near 430 µs passed
+/// the limit, and the next 1 200 steps from 412 µs take at most 70 iterations with the crack
+/// block, while the direct solves then took 74 % of the run.
 /// Tried and not kept: conjugate gradients preconditioned with an earlier step's factor of the
 /// whole system (rescaled to the new diagonal, a factorisation only when they stall). On the rings
 /// at 412 µs (10 502 unknowns) they needed 11 iterations one step after a factorisation and 15-20
@@ -47,7 +53,7 @@ inline constexpr double phase_field_tolerance = 1e-6;
 /// factorisation pay there: on the same system (248 000 non-zeros) this LDLᵀ factorises in 34 ms,
 /// SuiteSparse's CHOLMOD (supernodal, OpenBLAS on 2 threads) in 35 ms with AMD and 27 ms with
 /// nested dissection, whose analysis (63 ms) only pays back while the pattern holds.
-inline constexpr int jacobi_iteration_limit = 300;
+/// (The limits are in fragmpm/mpm/phase_field_warm_start.hpp.)
 /// Relative diagonal shift of the direct solve (phase_field_stage.cpp, step 5).
 inline constexpr double phase_field_pivot_shift = 1e-12;
 
@@ -98,9 +104,10 @@ struct PhaseFieldState {
   /// change factorises with it again and gets the same bits as a fresh analysis.
   std::vector<int> analysed_outer, analysed_inner;
   bool pattern_reused = false;  ///< the last direct solve skipped the analysis
-  /// The last solution, which starts the next solve, and whether the next solve is direct.
+  /// The last solution, which starts the next solve, and how many of the next solves are direct.
   PhaseFieldWarmStart<D> last;
   bool direct = false;    ///< the last solve factorised K (sparse LDLᵀ)
+  bool stopped_at_limit = false;  ///< its conjugate gradients stopped at the iteration limit
   int iterations = 0;     ///< of the last solve
   double residual = 0.0;  ///< relative residual of the last solve
 };

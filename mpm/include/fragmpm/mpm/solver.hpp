@@ -49,6 +49,9 @@ struct PhaseFieldWork {
   long long iterations = 0;   ///< conjugate-gradient iterations over all solves
   long long direct_runs = 0;  ///< solves by sparse LDLᵀ instead of conjugate gradients
   long long reused_orderings = 0;  ///< direct solves that kept the last step's ordering
+  /// conjugate-gradient solves stopped at the iteration limit and finished directly (each starts
+  /// a run of direct solves, phase_field_warm_start.hpp)
+  long long stopped_at_limit = 0;
   double seconds = 0.0;            ///< wall time in the stage: assembly, solve, interpolation [s]
 };
 
