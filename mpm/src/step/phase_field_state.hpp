@@ -39,12 +39,13 @@ inline constexpr double phase_field_tolerance = 1e-6;
 /// factorisation of the whole system). A solve that reaches `phase_field_iteration_limit`
 /// iterations stops there and the step factorises the whole system instead, and so do the next
 /// solves, a run of them that doubles while the next attempts fail too
-/// (phase_field_warm_start.hpp). The limit is the iteration count that costs about one
-/// factorisation. Until that attempt the history only grows, so whatever made the iteration slow
-/// was not expected to go away, and the first version of this stage factorised for good. But
-/// the hard solves come singly: on the 20 m/s rings at h = 1 mm one solve near 430 µs passed
-/// the limit, and the next 1 200 steps from 412 µs take at most 70 iterations with the crack
-/// block, while the direct solves then took 74 % of the run.
+/// (phase_field_warm_start.hpp). The history only grows, and an earlier version of this stage
+/// factorised for good after the first such solve. But the hard solves come singly: in the
+/// 20 m/s rings at h = 1 mm the iterations creep up from about 15 to 60-110 a step while the
+/// block's smallest pivot falls, and near 439 µs one solve did not converge in 24 296
+/// iterations (2 n). After 64 direct solves the conjugate gradients resumed at 14-15 iterations;
+/// four such events cost 260 direct solves of 11 373, where factorising for good cost 3 503 and
+/// 73 s more of a 366 s run.
 /// Tried and not kept: conjugate gradients preconditioned with an earlier step's factor of the
 /// whole system (rescaled to the new diagonal, a factorisation only when they stall). On the rings
 /// at 412 µs (10 502 unknowns) they needed 11 iterations one step after a factorisation and 15-20
@@ -106,10 +107,10 @@ struct PhaseFieldState {
   bool pattern_reused = false;  ///< the last direct solve skipped the analysis
   /// The last solution, which starts the next solve, and how many of the next solves are direct.
   PhaseFieldWarmStart<D> last;
-  bool direct = false;    ///< the last solve factorised K (sparse LDLᵀ)
+  bool direct = false;            ///< the last solve factorised K (sparse LDLᵀ)
   bool stopped_at_limit = false;  ///< its conjugate gradients stopped at the iteration limit
-  int iterations = 0;     ///< of the last solve
-  double residual = 0.0;  ///< relative residual of the last solve
+  int iterations = 0;             ///< of the last solve
+  double residual = 0.0;          ///< relative residual of the last solve
 };
 
 }  // namespace fragmpm::mpm

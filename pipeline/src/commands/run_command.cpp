@@ -129,8 +129,8 @@ int execute(const RunArguments& args) {
                    "%d iterations), %.1f conjugate-gradient iterations a solve, %.1f s "
                    "(%.0f %% of the run)\n",
                    work.runs, work.direct_runs, work.reused_orderings, work.stopped_at_limit,
-                   mpm::phase_field_iteration_limit,
-                   double(work.iterations) / double(work.runs), work.seconds,
+                   mpm::phase_field_iteration_limit, double(work.iterations) / double(work.runs),
+                   work.seconds,
                    result.wall_seconds > 0 ? 100.0 * work.seconds / result.wall_seconds : 0.0);
     const mpm::LostParticles& lost = row.totals.lost;
     if (solver.problem().grid.outside == mpm::OutsidePolicy::remove)

@@ -1,8 +1,8 @@
 #pragma once
 // What a phase-field run carries from one nodal solve to the next ([KT19] Alg. 1 solves the
 // phase-field system once a step): the last solution c = 1 − d per grid node and field, which
-// starts the next conjugate-gradient solve, and how many of the next solves are direct. A checkpoint
-// stores it, so a restarted run repeats the uninterrupted one bit for bit.
+// starts the next conjugate-gradient solve, and how many of the next solves are direct. A
+// checkpoint stores it, so a restarted run repeats the uninterrupted one bit for bit.
 #include <cstdint>
 #include <vector>
 
@@ -15,10 +15,11 @@ namespace fragmpm::mpm {
 inline constexpr int phase_field_iteration_limit = 300;
 /// Direct solves after a conjugate-gradient solve stops at its iteration limit, before the next
 /// attempt (the first time, and at most, doubling while the attempts keep failing). An attempt
-/// that fails costs at most the limit's 300 iterations, on the colliding rings' 10 500 unknowns
-/// about 40 ms, one factorisation of the whole system: spread over 64 or more direct solves it
-/// adds under 2 %, while a hard step that passes (a new contact, a crack that just opened) no
-/// longer condemns the rest of the run to factorisations (step/phase_field_state.hpp).
+/// that fails costs the limit's 300 iterations, on the colliding rings' 12 000 unknowns about
+/// two factorisations of the whole system (a profile of that run puts 0.35 ms of CPU time in an
+/// iteration; a factorisation takes about 45 ms): spread over 64 or more direct solves that is a
+/// few per cent, while a single hard solve no longer condemns the rest of the run to
+/// factorisations (step/phase_field_state.hpp).
 inline constexpr std::int32_t first_direct_run = 64;
 inline constexpr std::int32_t longest_direct_run = 4096;
 

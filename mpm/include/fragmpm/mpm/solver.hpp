@@ -52,7 +52,7 @@ struct PhaseFieldWork {
   /// conjugate-gradient solves stopped at the iteration limit and finished directly (each starts
   /// a run of direct solves, phase_field_warm_start.hpp)
   long long stopped_at_limit = 0;
-  double seconds = 0.0;            ///< wall time in the stage: assembly, solve, interpolation [s]
+  double seconds = 0.0;  ///< wall time in the stage: assembly, solve, interpolation [s]
 };
 
 template <int D>
