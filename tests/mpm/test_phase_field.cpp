@@ -384,6 +384,29 @@ TEST(PhaseField, OpenCrackNeedsFewIterationsWithTheCrackBlock) {
   EXPECT_EQ(bar.phase_field_work().direct_runs, 0);
 }
 
+TEST(PhaseField, DirectRunsDoubleWhileTheAttemptsFail) {
+  // The solve that stops at the limit is finished directly and is the whole first run; an attempt
+  // that fails right after a run doubles the next (the failed attempts' 300 iterations, about two
+  // factorisations each, then stay a bounded share), up to the longest; a converged solve in
+  // between (direct_run = 0) starts again from the first.
+  mpm::PhaseFieldWarmStart<2> next;
+  mpm::begin_direct_run(next);
+  EXPECT_EQ(next.direct_run, 1);
+  EXPECT_EQ(next.direct_solves_left, 0);
+  mpm::begin_direct_run(next);
+  EXPECT_EQ(next.direct_run, 2);
+  EXPECT_EQ(next.direct_solves_left, 1);
+  next.direct_solves_left = 0;
+  mpm::begin_direct_run(next);
+  EXPECT_EQ(next.direct_solves_left, 3);
+  for (int k = 0; k < 20; ++k) mpm::begin_direct_run(next);
+  EXPECT_EQ(next.direct_run, mpm::longest_direct_run);
+  EXPECT_EQ(next.direct_solves_left, 4095);
+  next.direct_run = 0;
+  mpm::begin_direct_run(next);
+  EXPECT_EQ(next.direct_solves_left, mpm::first_direct_run - 1);
+}
+
 TEST(PhaseField, DirectSolvesEndAndConjugateGradientsResume) {
   // A run of direct solves (after a solve reached the iteration limit) lasts its length; then the
   // conjugate gradients with the crack block try again and, on this strip, converge well within

@@ -409,9 +409,7 @@ void solve_phase_field(StepState<D>& state) {
     next.direct_run = 0;
   } else {
     pf.stopped_at_limit = true;
-    next.direct_run =
-        std::min(next.direct_run > 0 ? 2 * next.direct_run : first_direct_run, longest_direct_run);
-    next.direct_solves_left = next.direct_run;
+    begin_direct_run(next);
     pf.direct = solve_directly();
     // Should the factorisation miss the tolerance too, the iteration goes on from the latest c.
     if (!pf.direct) {

@@ -3,6 +3,7 @@
 // phase-field system once a step): the last solution c = 1 − d per grid node and field, which
 // starts the next conjugate-gradient solve, and how many of the next solves are direct. A
 // checkpoint stores it, so a restarted run repeats the uninterrupted one bit for bit.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -13,14 +14,17 @@ namespace fragmpm::mpm {
 /// Conjugate-gradient iterations at which a phase-field solve stops and factorises the whole
 /// system instead (why: step/phase_field_state.hpp).
 inline constexpr int phase_field_iteration_limit = 300;
-/// Direct solves after a conjugate-gradient solve stops at its iteration limit, before the next
-/// attempt (the first time, and at most, doubling while the attempts keep failing). An attempt
-/// that fails costs the limit's 300 iterations, on the colliding rings' 12 000 unknowns about
-/// two factorisations of the whole system (a profile of that run puts 0.35 ms of CPU time in an
-/// iteration; a factorisation takes about 45 ms): spread over 64 or more direct solves that is a
-/// few per cent, while a single hard solve no longer condemns the rest of the run to
-/// factorisations (step/phase_field_state.hpp).
-inline constexpr std::int32_t first_direct_run = 64;
+/// Direct solves from a conjugate-gradient solve that stops at its iteration limit (that step's
+/// own included) to the next attempt: the first time, and at most, doubling while the attempts
+/// keep failing. One is enough in the runs measured: the failures come singly, and the conjugate
+/// gradients converge again from the exact solution of one factorisation (the 20 m/s rings at
+/// h = 1 mm: 5 failures in 11 373 solves, none right after a direct solve;
+/// step/phase_field_state.hpp). Should they keep failing, the doubling bounds what the attempts
+/// cost: each stops after the limit's 300 iterations, on those rings' 12 000 unknowns about two
+/// factorisations of the whole system (a profile puts 0.35 ms of CPU time in an iteration, a
+/// factorisation takes about 45 ms), so after k failures in a row the 2ᵏ − 1 direct solves carry
+/// about 2k factorisations' worth of failed attempts, a few per cent once k reaches 8.
+inline constexpr std::int32_t first_direct_run = 1;
 inline constexpr std::int32_t longest_direct_run = 4096;
 
 template <int D>
@@ -29,12 +33,22 @@ struct PhaseFieldWarmStart {
   std::vector<std::int32_t> field;  ///< its field (body, or 0 when the bodies shared one)
   std::vector<double> solution;     ///< c = 1 − d at the node
   /// Solves left that factorise the whole system before conjugate gradients are tried again
-  /// (0: the next solve iterates), and the length of the run of direct solves they belong to
-  /// (0: the last conjugate-gradient solve converged within its iteration limit).
+  /// (0: the next solve iterates), and the length of the run of direct solves they belong to,
+  /// counting the solve that stopped at the limit (0: the last conjugate-gradient solve
+  /// converged within its iteration limit).
   std::int32_t direct_solves_left = 0;
   std::int32_t direct_run = 0;
 
   bool empty() const { return solution.empty(); }
 };
+
+/// After a solve that reached the iteration limit (and is finished directly): the run of direct
+/// solves it begins, twice the last one when the attempt right after that failed as well.
+template <int D>
+void begin_direct_run(PhaseFieldWarmStart<D>& next) {
+  next.direct_run =
+      next.direct_run > 0 ? std::min(2 * next.direct_run, longest_direct_run) : first_direct_run;
+  next.direct_solves_left = next.direct_run - 1;
+}
 
 }  // namespace fragmpm::mpm
