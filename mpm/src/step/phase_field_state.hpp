@@ -43,9 +43,10 @@ inline constexpr double phase_field_tolerance = 1e-6;
 /// factorised for good after the first such solve. But the hard solves come singly: in the
 /// 20 m/s rings at h = 1 mm the iterations creep up from about 15 to 60-110 a step while the
 /// block's smallest pivot falls, and near 439 µs one solve did not converge in 24 296
-/// iterations (2 n). After 64 direct solves the conjugate gradients resumed at 14-15 iterations;
-/// four such events cost 260 direct solves of 11 373, where factorising for good cost 3 503 and
-/// 73 s more of a 366 s run.
+/// iterations (2 n). After a direct solve the conjugate gradients resume at 14-15 iterations: the
+/// run stopped 5 of its 11 373 solves at the limit, none right after a direct solve, and took
+/// 281.6 s, against 366.0 s when the first of them switched the stage to factorisations for good
+/// (3 503 direct solves).
 /// Tried and not kept: conjugate gradients preconditioned with an earlier step's factor of the
 /// whole system (rescaled to the new diagonal, a factorisation only when they stall). On the rings
 /// at 412 µs (10 502 unknowns) they needed 11 iterations one step after a factorisation and 15-20
