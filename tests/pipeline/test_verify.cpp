@@ -2,10 +2,13 @@
 // fall with h at first order or better, for CPDI, linear and quadratic B-spline shape functions.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "fragmpm/pipeline/verify.hpp"
 
@@ -71,6 +74,31 @@ TEST(VerifyReport, TargetsDecidePassOrFail) {
   below.target_high = std::numeric_limits<double>::infinity();
   below.value = 0.5;  // only a lower bound: 0.5 < 0.98 misses it
   EXPECT_FALSE(report_case(dir, "case", {row, below}));
+}
+
+// A comma in a row's name must not shift the CSV's columns: the error-versus-time figure reads the
+// file back by splitting at commas (a plate-impact row's name once held one, and the figure was
+// refused).
+TEST(VerifyReport, CsvKeepsTwelveColumnsWhateverTheNames) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "fragmpm_test_verify_commas";
+  std::filesystem::remove_all(dir);
+  const VerifyRow row{.case_name = std::string("case"),
+                      .variant = std::string("a,b"),
+                      .metric = std::string("angle (notch end to tip, before branching)"),
+                      .value = 1.0,
+                      .reference = 1.0,
+                      .error = 0.0};
+  EXPECT_TRUE(report_case(dir.string(), "case", {row}));
+  std::ifstream csv(dir / "case.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(csv, line)) {
+    ++lines;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 11) << line;
+  }
+  EXPECT_EQ(lines, 2);
+  std::filesystem::remove_all(dir);
 }
 
 // `--variant` / `--level`: a selection runs only what it names, keeps the full table's CSV, and

@@ -343,10 +343,10 @@ void solve_phase_field(StepState<D>& state) {
   const Eigen::Map<const typename PhaseFieldState<D>::Matrix> matrix(
       unknowns, unknowns, static_cast<Eigen::Index>(nonzeros), pf.outer.data(), pf.inner.data(),
       pf.values.data());
-  // Which solve: conjugate gradients with the crack block (phase_field_state.hpp) unless a recent
-  // solve needed more than `phase_field_iteration_limit` iterations; then a run of direct solves
-  // (phase_field_warm_start.hpp) before the next attempt. A solve that stops at the limit is
-  // finished directly, so every step's c meets the tolerance.
+  // Which solve: conjugate gradients with the crack block (phase_field_state.hpp), stopped at
+  // `phase_field_iteration_limit` iterations, in which case the step is solved directly, so
+  // every step's c meets the tolerance; a stall right after such a step makes the next steps
+  // direct as well, in runs that double (phase_field_warm_start.hpp).
   const auto solve_directly = [&]() -> bool {
     // The direct solve, of K + ε diag(K) with ε = phase_field_pivot_shift: K is only semi-definite
     // (phase_field_state.hpp), and unshifted its LDLᵀ pivots of the directions no particle sees

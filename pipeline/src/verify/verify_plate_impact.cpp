@@ -160,7 +160,7 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v, const std::string& figur
   // Direction from the notch's end to the tip at the last observation before any branching (the
   // weak direction the anisotropic cases follow), counter-clockwise from x.
   const CrackState& unbranched = branch && branch != &history.front() ? *(branch - 1) : last;
-  rows.push_back(row("crack_angle_deg (notch end to tip, before branching)",
+  rows.push_back(row("crack_angle_deg (notch end to tip before branching)",
                      start ? std::atan2(unbranched.tip_y - notch_y, unbranched.tip_x - notch_tip) *
                                  180.0 / std::numbers::pi
                            : nan,

@@ -1,8 +1,10 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <string>
 
 #include "fragmpm/analysis/figure_error.hpp"
 #include "fragmpm/analysis/verify_plot.hpp"
@@ -30,10 +32,16 @@ bool report_case(const std::string& directory, const std::string& case_name,
   csv << "case,variant,level,cell_size_m,particles,dt_s,steps,wall_s,metric,value,reference,"
          "error\n";
   csv.precision(10);
+  // The files are read back by splitting at commas (the error-versus-time figure), so a comma in
+  // a name would shift every later column: it is written as a semicolon.
+  const auto field = [](std::string text) {
+    std::replace(text.begin(), text.end(), ',', ';');
+    return text;
+  };
   for (const auto& r : rows)
-    csv << r.case_name << ',' << r.variant << ',' << r.level << ',' << r.cell_size << ','
-        << r.particles << ',' << r.dt << ',' << r.steps << ',' << r.wall_seconds << ',' << r.metric
-        << ',' << r.value << ',' << r.reference << ',' << r.error << '\n';
+    csv << field(r.case_name) << ',' << field(r.variant) << ',' << r.level << ',' << r.cell_size
+        << ',' << r.particles << ',' << r.dt << ',' << r.steps << ',' << r.wall_seconds << ','
+        << field(r.metric) << ',' << r.value << ',' << r.reference << ',' << r.error << '\n';
   std::printf("\n%s\n%-8s %-5s %11s %9s %10s %7s %8s  %-28s %12s %12s %10s %6s  %s\n",
               case_name.c_str(), "variant", "level", "h [m]", "particles", "dt [s]", "steps",
               "wall [s]", "metric", "value", "reference", "error", "order", "target");
