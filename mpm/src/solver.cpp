@@ -385,6 +385,11 @@ const PhaseFieldWork& Solver<D>::phase_field_work() const {
 }
 
 template <int D>
+void Solver<D>::set_phase_field_iteration_limit(int limit) {
+  if (impl_->state.phase_field) impl_->state.phase_field->iteration_limit = std::max(limit, 1);
+}
+
+template <int D>
 PhaseFieldWarmStart<D> Solver<D>::phase_field_warm_start() const {
   return impl_->state.phase_field ? impl_->state.phase_field->last : PhaseFieldWarmStart<D>{};
 }

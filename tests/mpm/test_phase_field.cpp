@@ -461,3 +461,63 @@ TEST(PhaseField, DirectSolveKeepsItsOrderingWhileTheCouplingsHold) {
   EXPECT_EQ(differing, 0u);
   EXPECT_GT(largest, 0.99);
 }
+
+TEST(PhaseField, SolveStoppedAtTheLimitIsFinishedDirectly) {
+  // From the particles' projected c (no warm start) the crack block's conjugate gradients need 27
+  // iterations on this strip; stopped after 4, the step must still meet the tolerance, through
+  // the direct solve, and start a run of one direct solve. The next solve starts from that exact
+  // solution and converges, which ends the run. An attempt that fails right after a run (the warm
+  // start's run of 1 kept, its solution dropped) doubles the run: the step after it is direct.
+  mpm::Solver<2> reference(cracked_strip());
+  reference.restore(0.0, 0, reference.accumulators(), reference.particles(), {});
+  const long long constructor_iterations = reference.phase_field_work().iterations;
+  ASSERT_FALSE(reference.step());
+  ASSERT_EQ(reference.phase_field_work().direct_runs, 0);
+  ASSERT_GT(reference.phase_field_work().iterations - constructor_iterations, 4);
+
+  mpm::Solver<2> limited(cracked_strip());
+  limited.set_phase_field_iteration_limit(4);
+  limited.restore(0.0, 0, limited.accumulators(), limited.particles(), {});
+  mpm::PhaseFieldWork before = limited.phase_field_work();
+  ASSERT_FALSE(limited.step());
+  mpm::PhaseFieldWork work = limited.phase_field_work();
+  EXPECT_EQ(work.stopped_at_limit - before.stopped_at_limit, 1);
+  EXPECT_EQ(work.direct_runs - before.direct_runs, 1);
+  EXPECT_EQ(work.iterations - before.iterations, 4);
+  mpm::PhaseFieldWarmStart<2> start = limited.phase_field_warm_start();
+  EXPECT_EQ(start.direct_run, mpm::first_direct_run);
+  EXPECT_EQ(start.direct_solves_left, 0);
+  const mpm::Particles<2>& a = reference.particles();
+  const mpm::Particles<2>& b = limited.particles();
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0.0, largest = 0.0;
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    worst = std::max(worst, std::abs(a.damage[p] - b.damage[p]));
+    largest = std::max(largest, b.damage[p]);
+  }
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_GT(largest, 0.99);
+
+  before = limited.phase_field_work();
+  ASSERT_FALSE(limited.step());
+  work = limited.phase_field_work();
+  EXPECT_EQ(work.stopped_at_limit, before.stopped_at_limit);
+  EXPECT_EQ(work.direct_runs, before.direct_runs);
+  EXPECT_EQ(limited.phase_field_warm_start().direct_run, 0);
+
+  mpm::PhaseFieldWarmStart<2> cold;
+  cold.direct_run = mpm::first_direct_run;
+  limited.restore(limited.time(), limited.step_count(), limited.accumulators(), limited.particles(),
+                  cold);
+  before = limited.phase_field_work();
+  ASSERT_FALSE(limited.step());
+  start = limited.phase_field_warm_start();
+  EXPECT_EQ(limited.phase_field_work().stopped_at_limit - before.stopped_at_limit, 1);
+  EXPECT_EQ(start.direct_run, 2 * mpm::first_direct_run);
+  EXPECT_EQ(start.direct_solves_left, 2 * mpm::first_direct_run - 1);
+  ASSERT_FALSE(limited.step());
+  work = limited.phase_field_work();
+  EXPECT_EQ(work.direct_runs - before.direct_runs, 2);
+  EXPECT_EQ(work.iterations - before.iterations, 4);
+  EXPECT_EQ(limited.phase_field_warm_start().direct_solves_left, 0);
+}

@@ -404,7 +404,7 @@ void solve_phase_field(StepState<D>& state) {
     --next.direct_solves_left;
     pf.direct = solve_directly();
     if (!pf.direct) iterate(2 * static_cast<int>(unknowns));
-  } else if (iterate(phase_field_iteration_limit)) {
+  } else if (iterate(pf.iteration_limit)) {
     pf.direct = false;
     next.direct_run = 0;
   } else {

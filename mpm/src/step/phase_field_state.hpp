@@ -108,6 +108,8 @@ struct PhaseFieldState {
   bool pattern_reused = false;  ///< the last direct solve skipped the analysis
   /// The last solution, which starts the next solve, and how many of the next solves are direct.
   PhaseFieldWarmStart<D> last;
+  /// Conjugate-gradient iterations at which a solve stops and is finished directly.
+  int iteration_limit = phase_field_iteration_limit;
   bool direct = false;            ///< the last solve factorised K (sparse LDLᵀ)
   bool stopped_at_limit = false;  ///< its conjugate gradients stopped at the iteration limit
   int iterations = 0;             ///< of the last solve

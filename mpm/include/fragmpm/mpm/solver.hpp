@@ -79,6 +79,10 @@ class Solver {
   /// CFL limit (with C_cfl) from the current state: the adaptive Δt of the next step [s].
   double stable_dt() const;
   const PhaseFieldWork& phase_field_work() const;
+  /// Conjugate-gradient iterations at which the next phase-field solves stop and are finished
+  /// directly (default `phase_field_iteration_limit`; no effect without a phase-field material).
+  /// A lower limit exercises the direct fallback on a small system, as the tests do.
+  void set_phase_field_iteration_limit(int limit);
 
   /// The nodal phase field that starts the next solve (empty without a phase-field material or
   /// before the first solve), for a checkpoint.
