@@ -205,12 +205,8 @@ std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options) {
     if (!selected(options, v.name, level)) return;
     // `--quick` runs the isotropic case unless a variant is named.
     if (options.quick && v.anisotropy && options.variants.empty()) return;
-    for (auto& r : run_plate(v, cell_size, level, case_directory(options, "plate-impact"))) {
-      if (!options.quick)
-        std::fprintf(stderr, "    %s h = %g mm: %s = %.4g\n", v.name, cell_size * 1e3,
-                     r.metric.c_str(), r.value);
-      rows.push_back(r);
-    }
+    append_run_rows(options, v.name, cell_size,
+                    run_plate(v, cell_size, level, case_directory(options, "plate-impact")), rows);
   };
   if (!options.quick) add(variants[0], 0.125e-3, 1);
   for (const PlateVariant& v : variants) add(v, 0.25e-3, 0);

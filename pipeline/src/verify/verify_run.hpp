@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "fragmpm/mpm/solver.hpp"
 #include "fragmpm/pipeline/verify.hpp"
@@ -83,6 +85,19 @@ inline VerifyRow level_row(const std::string& case_name, const std::string& vari
   r.steps = run.steps;
   r.wall_seconds = run.wall_seconds;
   return r;
+}
+
+/// Appends one run's rows to `rows`; the full set, whose runs at the papers' cells take up to
+/// hours each, also prints them as soon as the run ends.
+inline void append_run_rows(const VerifyOptions& options, const std::string& variant,
+                            double cell_size, std::vector<VerifyRow> run_rows,
+                            std::vector<VerifyRow>& rows) {
+  for (VerifyRow& r : run_rows) {
+    if (!options.quick)
+      std::fprintf(stderr, "    %s h = %g mm: %s = %.4g\n", variant.c_str(), cell_size * 1e3,
+                   r.metric.c_str(), r.value);
+    rows.push_back(std::move(r));
+  }
 }
 
 /// |value − reference| / |reference|.

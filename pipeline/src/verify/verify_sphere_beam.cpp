@@ -267,12 +267,7 @@ std::vector<VerifyRow> verify_sphere_beam(const VerifyOptions& options) {
     if (!selected(options, v.name, level)) return;
     ++runs;
     const std::string figures = case_directory(options, "sphere-beam");
-    for (auto& r : run_beam(v, cell_size, level, figures)) {
-      if (!options.quick)
-        std::fprintf(stderr, "    %s h = %g mm: %s = %.4g\n", v.name, cell_size * 1e3,
-                     r.metric.c_str(), r.value);
-      rows.push_back(r);
-    }
+    append_run_rows(options, v.name, cell_size, run_beam(v, cell_size, level, figures), rows);
   };
   if (!options.quick) add(variants[0], 0.125e-3, 1);
   for (const BeamVariant& v : variants) add(v, 0.25e-3, 0);
