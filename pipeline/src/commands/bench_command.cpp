@@ -336,7 +336,7 @@ void add_bench_command(CLI::App& app, CommandResult& result) {
                   "Only the peer scenes (block, disks, Brazilian disk)");
   bench->add_flag("--damage-laws-only", *damage_only,
                   "Only the damage-law comparison (no damage, Rankine, time-to-failure, phase "
-                  "field at 1e5 particles)");
+                  "field without and with open cracks, at 1e5 particles)");
   bench->callback([quick, threads, repeats, peers_only, damage_only, &result] {
     result.exit_code = execute(*quick, *threads, *repeats, *peers_only, *damage_only);
   });
