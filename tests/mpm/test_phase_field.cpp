@@ -154,6 +154,25 @@ TEST(PhaseFieldAnisotropy, RotatedTensorGivesTheDensityOfTheMaterialAxes) {
   }
 }
 
+TEST(PhaseFieldAnisotropy, CubicTensorIsTheSameAfterAQuarterTurn) {
+  // A quarter turn of the axes swaps ξ₁ and ξ₂ (ξ₂ → −ξ₁, and Γ is even in each axis), so Γ_g is
+  // unchanged when γ₁₁₁₁ = γ₂₂₂₂ ([KT19] §5.1 case (ii) at −30° and 60°) and changed when not
+  // (case (iii)): the plate's cubic case does not depend on which frame the paper's φ is read in,
+  // the orthotropic one does (verify_plate_impact.cpp).
+  const double degree = std::acos(-1.0) / 180.0;
+  const auto global = [&](double gamma_2222, double orientation_deg) {
+    return mpm::phase_field_anisotropy_global(
+        {1.0, gamma_2222, 0.0, 74.0, orientation_deg * degree});
+  };
+  const Eigen::Matrix3d cubic = global(1.0, -30.0);
+  EXPECT_LT((global(1.0, 60.0) - cubic).cwiseAbs().maxCoeff(), 1e-12 * cubic.cwiseAbs().maxCoeff());
+  const Eigen::Matrix3d orthotropic = global(80.0, -30.0);
+  EXPECT_GT((global(80.0, 60.0) - orthotropic).cwiseAbs().maxCoeff(),
+            0.1 * orthotropic.cwiseAbs().maxCoeff());
+  // A half turn leaves any Γ unchanged.
+  EXPECT_LT((global(80.0, 150.0) - orthotropic).cwiseAbs().maxCoeff(),
+            1e-12 * orthotropic.cwiseAbs().maxCoeff());
+}
 TEST(PhaseFieldSplit, DegradationEndsAtTheResidualStiffness) {
   EXPECT_DOUBLE_EQ(mpm::phase_field_degradation(0.0, 1e-3), 1.0);
   EXPECT_DOUBLE_EQ(mpm::phase_field_degradation(1.0, 1e-3), 1e-3);

@@ -23,7 +23,8 @@ const std::vector<VerifyCase>& verify_cases() {
       {"notched-bar", "V6 notched bar struck by a disk: damage dissipation vs G_f x crack",
        verify_notched_bar},
       {"bar-tension",
-       "V8 uniform bar with a weaker column pulled apart: damage dissipation vs G_f x height, three "
+       "V8 uniform bar with a weaker column pulled apart: damage dissipation vs G_f x height, "
+       "three "
        "resolutions",
        verify_bar_tension},
       {"phase-field-bar",
@@ -31,7 +32,8 @@ const std::vector<VerifyCase>& verify_cases() {
        "energy of a bar pulled apart vs G_c x height, three resolutions",
        verify_phase_field_bar},
       {"plate-impact",
-       "KT19 5.1 plate under impact, phase field at h = 0.25 and 0.125 mm: crack start, speed vs Rayleigh, "
+       "KT19 5.1 plate under impact, phase field at h = 0.25 and 0.125 mm: crack start, speed vs "
+       "Rayleigh, "
        "branching; isotropic, cubic and orthotropic; phase-field figures at the paper's times",
        verify_plate_impact},
       {"sphere-beam",
