@@ -206,8 +206,10 @@ std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options) {
        "deg\" }",
        2.121}};
   // Level 0 is h = l₀ = 0.25 mm, the smallest l₀ / h the scene compiler admits (minutes to tens
-  // of minutes a run); level 1 the paper's h = 0.125 mm (8 times the particle-steps, hours a run
-  // on 2 cores), which only the full set runs, case (i) first.
+  // of minutes a run); level 1 the paper's h = 0.125 mm (8 times the particle-steps; case (i) about
+  // 2 hours on 2 cores, the anisotropic cases about a day each, since at l₀ = 2 h their
+  // fourth-order system takes the direct solve every step: docs/verification.md), which only the
+  // full set runs, case (i) first.
   std::vector<std::string> names;
   for (const PlateVariant& v : variants) names.push_back(v.name);
   check_selection(options, "plate-impact", names, options.quick ? 1 : 2);
