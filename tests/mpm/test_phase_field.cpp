@@ -173,6 +173,7 @@ TEST(PhaseFieldAnisotropy, CubicTensorIsTheSameAfterAQuarterTurn) {
   EXPECT_LT((global(80.0, 150.0) - orthotropic).cwiseAbs().maxCoeff(),
             1e-12 * orthotropic.cwiseAbs().maxCoeff());
 }
+
 TEST(PhaseFieldSplit, DegradationEndsAtTheResidualStiffness) {
   EXPECT_DOUBLE_EQ(mpm::phase_field_degradation(0.0, 1e-3), 1.0);
   EXPECT_DOUBLE_EQ(mpm::phase_field_degradation(1.0, 1e-3), 1e-3);

@@ -24,8 +24,7 @@ const std::vector<VerifyCase>& verify_cases() {
        verify_notched_bar},
       {"bar-tension",
        "V8 uniform bar with a weaker column pulled apart: damage dissipation vs G_f x height, "
-       "three "
-       "resolutions",
+       "three resolutions",
        verify_bar_tension},
       {"phase-field-bar",
        "AT2 phase field: imposed crack profile vs exp(-|x|/(2 l0)) and its energy, and the crack "
@@ -33,8 +32,8 @@ const std::vector<VerifyCase>& verify_cases() {
        verify_phase_field_bar},
       {"plate-impact",
        "KT19 5.1 plate under impact, phase field at h = 0.25 and 0.125 mm: crack start, speed vs "
-       "Rayleigh, "
-       "branching; isotropic, cubic and orthotropic; phase-field figures at the paper's times",
+       "Rayleigh, branching; isotropic, cubic and orthotropic; phase-field figures at the paper's "
+       "times",
        verify_plate_impact},
       {"sphere-beam",
        "KT19 5.3 disk striking a free beam, phase field: crack energy while the median crack "

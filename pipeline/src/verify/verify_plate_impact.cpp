@@ -110,13 +110,13 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v, double cell_size, int le
                 });
   if (!figure_directory.empty()) {
     // The quick level keeps the figure's name from before the paper's cell was a level.
-    char stem[96];
+    char file_name[96];
     if (level == 0)
-      std::snprintf(stem, sizeof stem, "%s-phase-field.png", v.name);
+      std::snprintf(file_name, sizeof file_name, "%s-phase-field.png", v.name);
     else
-      std::snprintf(stem, sizeof stem, "%s-h%gmm-phase-field.png", v.name, cell * 1e3);
+      std::snprintf(file_name, sizeof file_name, "%s-h%gmm-phase-field.png", v.name, cell * 1e3);
     write_phase_field_panels(
-        snapshots, (std::filesystem::path(figure_directory) / stem).string(),
+        snapshots, (std::filesystem::path(figure_directory) / file_name).string(),
         std::string("Plate under impact, ") + v.name + ", " + cell_label(cell));
   }
   // Start: the first observation with the tip past the notch; branching: the first with two bands.
