@@ -132,7 +132,8 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
            : "AT2 phase field ([KT19]) on " + phase_field_reason +
                  ": nodal system solved each step by conjugate gradients, preconditioned by an "
                  "exact solve on the cracked particles' nodes (by sparse LDLT of the whole system "
-                 "in a step where they reach 300 iterations), one field per body; "
+                 "in a step where they pass 300 iterations and the cost of that "
+                 "factorisation), one field per body; "
                  "Hencky elasticity with the spectral tension-compression split"});
   const std::size_t bodies = problem.body_names.size();
   std::string partition_reason;

@@ -165,6 +165,10 @@ struct Solver<D>::Impl {
     phase_field_work.iterations += state.phase_field->iterations;
     phase_field_work.direct_runs += state.phase_field->direct ? 1 : 0;
     phase_field_work.stopped_at_limit += state.phase_field->stopped_at_limit ? 1 : 0;
+    phase_field_work.past_limit += state.phase_field->went_past_limit ? 1 : 0;
+    if (state.phase_field->stopped_at_limit || state.phase_field->went_past_limit)
+      phase_field_work.factorisation_iterations = std::max(
+          phase_field_work.factorisation_iterations, state.phase_field->factorisation_iterations);
     phase_field_work.reused_orderings +=
         state.phase_field->direct && state.phase_field->pattern_reused ? 1 : 0;
   }
@@ -385,8 +389,10 @@ const PhaseFieldWork& Solver<D>::phase_field_work() const {
 }
 
 template <int D>
-void Solver<D>::set_phase_field_iteration_limit(int limit) {
-  if (impl_->state.phase_field) impl_->state.phase_field->iteration_limit = std::max(limit, 1);
+void Solver<D>::set_phase_field_iteration_limit(int limit, bool weigh_factorisation) {
+  if (!impl_->state.phase_field) return;
+  impl_->state.phase_field->iteration_limit = std::max(limit, 1);
+  impl_->state.phase_field->weigh_factorisation = weigh_factorisation;
 }
 
 template <int D>

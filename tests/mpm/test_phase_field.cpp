@@ -482,12 +482,51 @@ TEST(PhaseField, DirectSolveKeepsItsOrderingWhileTheCouplingsHold) {
   EXPECT_GT(largest, 0.99);
 }
 
+TEST(PhaseField, SolveAtTheLimitGoesOnWhileAFactorisationCostsMore) {
+  // The strip's crack block needs 27 iterations from the projected c, and a factorisation of its
+  // whole system costs more than that (about 42, factorisation_cost_in_iterations): a solve stopped
+  // at a limit of 4 must weigh the two, go on iterating from where it stopped, converge without a
+  // factorisation and start no run of direct solves, and give the reference's field to within
+  // what the tolerance leaves.
+  mpm::Solver<2> reference(cracked_strip());
+  reference.restore(0.0, 0, reference.accumulators(), reference.particles(), {});
+  const long long constructor_iterations = reference.phase_field_work().iterations;
+  ASSERT_FALSE(reference.step());
+  const long long needed = reference.phase_field_work().iterations - constructor_iterations;
+  ASSERT_GT(needed, 4);
+
+  mpm::Solver<2> limited(cracked_strip());
+  limited.set_phase_field_iteration_limit(4);
+  limited.restore(0.0, 0, limited.accumulators(), limited.particles(), {});
+  const mpm::PhaseFieldWork before = limited.phase_field_work();
+  ASSERT_FALSE(limited.step());
+  const mpm::PhaseFieldWork work = limited.phase_field_work();
+  EXPECT_EQ(work.past_limit - before.past_limit, 1);
+  EXPECT_EQ(work.stopped_at_limit - before.stopped_at_limit, 0);
+  EXPECT_EQ(work.direct_runs - before.direct_runs, 0);
+  EXPECT_GT(work.factorisation_iterations, double(needed));
+  // Resumed after 4, the iterations lose the first 4's search directions, so they may take a few
+  // more than the uninterrupted 27, never fewer than the 4 they stopped at.
+  EXPECT_GT(work.iterations - before.iterations, 4);
+  EXPECT_LE(work.iterations - before.iterations, work.factorisation_iterations);
+  EXPECT_EQ(limited.phase_field_warm_start().direct_run, 0);
+  EXPECT_EQ(limited.phase_field_warm_start().direct_solves_left, 0);
+  const mpm::Particles<2>& a = reference.particles();
+  const mpm::Particles<2>& b = limited.particles();
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (std::size_t p = 0; p < a.size(); ++p)
+    worst = std::max(worst, std::abs(a.damage[p] - b.damage[p]));
+  EXPECT_LT(worst, 1e-5);
+}
+
 TEST(PhaseField, SolveStoppedAtTheLimitIsFinishedDirectly) {
   // From the particles' projected c (no warm start) the crack block's conjugate gradients need 27
-  // iterations on this strip; stopped after 4, the step must still meet the tolerance, through
-  // the direct solve, and start a run of one direct solve. The next solve starts from that exact
-  // solution and converges, which ends the run. An attempt that fails right after a run (the warm
-  // start's run of 1 kept, its solution dropped) doubles the run: the step after it is direct.
+  // iterations on this strip; stopped after 4 without weighing a factorisation, the step must still
+  // meet the tolerance, through the direct solve, and start a run of one direct solve. The next
+  // solve starts from that exact solution and converges, which ends the run. An attempt that fails
+  // right after a run (the warm start's run of 1 kept, its solution dropped) doubles the run: the
+  // step after it is direct.
   mpm::Solver<2> reference(cracked_strip());
   reference.restore(0.0, 0, reference.accumulators(), reference.particles(), {});
   const long long constructor_iterations = reference.phase_field_work().iterations;
@@ -496,7 +535,7 @@ TEST(PhaseField, SolveStoppedAtTheLimitIsFinishedDirectly) {
   ASSERT_GT(reference.phase_field_work().iterations - constructor_iterations, 4);
 
   mpm::Solver<2> limited(cracked_strip());
-  limited.set_phase_field_iteration_limit(4);
+  limited.set_phase_field_iteration_limit(4, false);
   limited.restore(0.0, 0, limited.accumulators(), limited.particles(), {});
   mpm::PhaseFieldWork before = limited.phase_field_work();
   ASSERT_FALSE(limited.step());

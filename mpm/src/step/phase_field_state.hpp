@@ -12,6 +12,7 @@
 
 #include "fragmpm/mpm/phase_field_warm_start.hpp"
 #include "fragmpm/mpm/problem.hpp"
+#include "step/counted_ldlt.hpp"
 #include "step/crack_block_preconditioner.hpp"
 
 namespace fragmpm::mpm {
@@ -100,20 +101,26 @@ struct PhaseFieldState {
   Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, CrackBlockPreconditioner> solver;
   /// The direct solve: K is symmetric, so its compressed rows are also its compressed columns.
   using ColumnMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-  Eigen::SimplicialLDLT<ColumnMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> direct_solver;
+  CountedLdlt<ColumnMatrix> direct_solver;
   /// The pattern (compressed rows) the direct solver's ordering and elimination tree were computed
   /// for. The ordering depends on the pattern alone, so a step whose unknowns and couplings did not
   /// change factorises with it again and gets the same bits as a fresh analysis.
   std::vector<int> analysed_outer, analysed_inner;
   bool pattern_reused = false;  ///< the last direct solve skipped the analysis
+  /// What one factorisation costs in conjugate-gradient iterations
+  /// (factorisation_cost_in_iterations), as last weighed by a solve that reached the iteration
+  /// limit (0 before).
+  double factorisation_iterations = 0.0;
   /// The last solution, which starts the next solve, and how many of the next solves are direct.
   PhaseFieldWarmStart<D> last;
-  /// Conjugate-gradient iterations at which a solve stops and is finished directly.
+  /// Conjugate-gradient iterations after which a solve weighs going on against factorising.
   int iteration_limit = phase_field_iteration_limit;
-  bool direct = false;            ///< the last solve factorised K (sparse LDLᵀ)
-  bool stopped_at_limit = false;  ///< its conjugate gradients stopped at the iteration limit
-  int iterations = 0;             ///< of the last solve
-  double residual = 0.0;          ///< relative residual of the last solve
+  bool weigh_factorisation = true;  ///< go on past the limit while a factorisation costs more
+  bool went_past_limit = false;     ///< the last solve went past it and converged iteratively
+  bool direct = false;              ///< the last solve factorised K (sparse LDLᵀ)
+  bool stopped_at_limit = false;    ///< its conjugate gradients stopped at the iteration limit
+  int iterations = 0;               ///< of the last solve
+  double residual = 0.0;            ///< relative residual of the last solve
 };
 
 }  // namespace fragmpm::mpm

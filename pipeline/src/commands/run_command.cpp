@@ -125,12 +125,14 @@ int execute(const RunArguments& args) {
     if (work.runs > 0)
       std::fprintf(stderr,
                    "  phase field: %lld solves, %lld of them direct (sparse LDLT, %lld with the "
-                   "last step's ordering; %lld runs of them after conjugate gradients reached "
-                   "%d iterations), %.1f conjugate-gradient iterations a solve, %.1f s "
-                   "(%.0f %% of the run)\n",
+                   "last step's ordering; %lld runs of them after conjugate gradients passed "
+                   "%d iterations and the cost of a factorisation), %lld past %d iterations and "
+                   "converged (a factorisation weighed at up to %.0f iterations), %.1f "
+                   "conjugate-gradient iterations a solve, %.1f s (%.0f %% of the run)\n",
                    work.runs, work.direct_runs, work.reused_orderings, work.stopped_at_limit,
-                   mpm::phase_field_iteration_limit, double(work.iterations) / double(work.runs),
-                   work.seconds,
+                   mpm::phase_field_iteration_limit, work.past_limit,
+                   mpm::phase_field_iteration_limit, work.factorisation_iterations,
+                   double(work.iterations) / double(work.runs), work.seconds,
                    result.wall_seconds > 0 ? 100.0 * work.seconds / result.wall_seconds : 0.0);
     const mpm::LostParticles& lost = row.totals.lost;
     if (solver.problem().grid.outside == mpm::OutsidePolicy::remove)

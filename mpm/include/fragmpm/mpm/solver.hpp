@@ -52,6 +52,11 @@ struct PhaseFieldWork {
   /// conjugate-gradient solves stopped at the iteration limit and finished directly (each starts
   /// a run of direct solves, phase_field_warm_start.hpp)
   long long stopped_at_limit = 0;
+  /// conjugate-gradient solves that reached the iteration limit and converged further on, since a
+  /// factorisation would have cost more (factorisation_cost_in_iterations)
+  long long past_limit = 0;
+  /// the largest cost of a factorisation in iterations that such a solve weighed
+  double factorisation_iterations = 0.0;
   double seconds = 0.0;  ///< wall time in the stage: assembly, solve, interpolation [s]
 };
 
@@ -79,10 +84,11 @@ class Solver {
   /// CFL limit (with C_cfl) from the current state: the adaptive Δt of the next step [s].
   double stable_dt() const;
   const PhaseFieldWork& phase_field_work() const;
-  /// Conjugate-gradient iterations at which the next phase-field solves stop and are finished
-  /// directly (default `phase_field_iteration_limit`; no effect without a phase-field material).
-  /// A lower limit exercises the direct fallback on a small system, as the tests do.
-  void set_phase_field_iteration_limit(int limit);
+  /// Conjugate-gradient iterations after which the next phase-field solves weigh going on against
+  /// a factorisation (default `phase_field_iteration_limit`; no effect without a phase-field
+  /// material), and whether they weigh at all: without, they stop at the limit and are finished
+  /// directly. A lower limit exercises both paths on a small system, as the tests do.
+  void set_phase_field_iteration_limit(int limit, bool weigh_factorisation = true);
 
   /// The nodal phase field that starts the next solve (empty without a phase-field material or
   /// before the first solve), for a checkpoint.
