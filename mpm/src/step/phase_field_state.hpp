@@ -38,7 +38,8 @@ inline constexpr double phase_field_tolerance = 1e-6;
 /// with an exact solve on the cracked particles' unknowns (crack_block_preconditioner.hpp), which
 /// takes the rings from 400 µs on in 12-70 iterations a step (14 ms, against 58 ms for the
 /// factorisation of the whole system). A solve that reaches `phase_field_iteration_limit`
-/// iterations stops there and the step factorises the whole system instead; should the next
+/// iterations goes on only while they have cost less than a factorisation of the whole system
+/// would (phase_field_stage.cpp, step 5), then stops and the step factorises it; should the next
 /// step's attempt fail as well, the steps after it factorise too, in runs that double
 /// (phase_field_warm_start.hpp). The history only grows, and an earlier version of this stage
 /// factorised for good after the first such solve. But the hard solves come singly: in the
