@@ -93,34 +93,45 @@ PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
     throw FigureError(run_path + ": /series has no rows yet (no step was recorded)");
   PlotSpec spec;
   spec.title = "Energy balance";
-  const std::pair<const char*, const char*> columns[] = {{"kinetic", "kinetic"},
-                                                         {"strain", "strain"},
-                                                         {"dissipated", "dissipated (damage)"},
-                                                         {"flow_dissipation", "crushed flow"},
-                                                         {"friction_work", "friction work"},
-                                                         {"contact_dissipation", "contact loss"},
-                                                         {"transfer_dissipation", "transfer loss"},
-                                                         {"wall_work", "wall work"},
-                                                         {"balance_error", "balance error"}};
-  for (const auto& [name, label] : columns) {
-    // Run files written before these losses were booked have no such series; a run whose failed
-    // material never flowed draws no flat zero line.
-    const std::string_view column = name;
-    if ((column == "contact_dissipation" || column == "transfer_dissipation" ||
-         column == "flow_dissipation") &&
-        !run.has(name))
+  // Every term of the balance (docs/design.md §2.4) that the run has: the stores, the losses, the
+  // work put in, then the error. A term that only some scenes have (the crack energy of a phase
+  // field, the work of loads or gravity, crushed flow) is drawn when it is not zero throughout, so
+  // that no part of the balance is left off the figure and no flat zero line is added.
+  struct Column {
+    const char* name;
+    const char* label;
+    bool only_when_nonzero;
+  };
+  const Column columns[] = {{"kinetic", "kinetic", false},
+                            {"strain", "strain", false},
+                            {"fracture_energy", "crack energy (phase field)", true},
+                            {"dissipated", "dissipated (damage)", false},
+                            {"flow_dissipation", "crushed flow", true},
+                            {"friction_work", "friction work", false},
+                            {"contact_dissipation", "contact loss", false},
+                            {"transfer_dissipation", "transfer loss", false},
+                            {"wall_work", "wall work", false},
+                            {"load_work", "load work", true},
+                            {"gravity_work", "gravity work", true},
+                            {"balance_error", "balance error", false}};
+  for (const Column& c : columns) {
+    // Run files written before a term was booked have no such series.
+    const std::string_view column = c.name;
+    if ((c.only_when_nonzero || column == "contact_dissipation" ||
+         column == "transfer_dissipation") &&
+        !run.has(c.name))
       continue;
-    if (column == "flow_dissipation") {
-      const std::vector<double>& flow = run.column(name);
-      if (std::all_of(flow.begin(), flow.end(), [](double e) { return e == 0.0; })) continue;
+    if (c.only_when_nonzero) {
+      const std::vector<double>& values = run.column(c.name);
+      if (std::all_of(values.begin(), values.end(), [](double e) { return e == 0.0; })) continue;
     }
     LineSeries s;
-    s.label = label;
+    s.label = c.label;
     s.x = time;
-    s.y = run.column(name);
+    s.y = run.column(c.name);
     if (s.y.size() != time.size())
       throw FigureError(fmt::format("{}: /series/{} has {} rows but /series/time has {}", run_path,
-                                    name, s.y.size(), time.size()));
+                                    c.name, s.y.size(), time.size()));
     spec.series.push_back(std::move(s));
   }
   // What particles removed after leaving the domain carried out, when some did: without it the

@@ -506,6 +506,53 @@ TEST(SeriesFigures, FixedWallReactionIsPlottedAgainstTime) {
   EXPECT_THROW(force_displacement_spec(run, {}), FigureError);
 }
 
+TEST(SeriesFigures, EnergyFigureDrawsEveryTermOfTheBalance) {
+  // A phase-field bar pulled by a traction load: the load's work goes into kinetic, strain and
+  // crack energy and the transfer loss; the balance error is what they leave. The figure must draw
+  // every term, so that the drawn stores and losses less the drawn work reproduce the drawn error
+  // at every row (docs/design.md §2.4); gravity and crushed flow, zero throughout, are left off.
+  const fs::path dir = figure_directory("energy_terms");
+  const std::string run = (dir / "pulled.h5").string();
+  {
+    auto file = mpm::RunFile<2>::create(run, mpm::RunMeta{}, true);
+    std::vector<mpm::SeriesRow<2>> rows(4);
+    for (int k = 0; k < 4; ++k) {
+      rows[k].step = k;
+      rows[k].time = 1e-6 * k;
+      rows[k].kinetic = 3.0 * k;
+      rows[k].strain = 2.0 * k;
+      rows[k].totals.fracture_energy = 4.0 * k;
+      rows[k].totals.transfer_dissipation = 0.5 * k;
+      rows[k].totals.load_work = 10.0 * k;
+      rows[k].balance_error = (3.0 + 2.0 + 4.0 + 0.5 - 10.0) * k;
+    }
+    file.append_series(rows);
+  }
+  const PlotSpec spec = energy_plot_spec(run);
+  double sign_of_balance = 0.0;
+  std::vector<double> drawn(4, 0.0), error(4, 0.0);
+  bool crack = false, load = false;
+  for (const LineSeries& s : spec.series) {
+    EXPECT_NE(s.label, "gravity work");
+    EXPECT_NE(s.label, "crushed flow");
+    crack = crack || s.label == "crack energy (phase field)";
+    load = load || s.label == "load work";
+    ASSERT_EQ(s.y.size(), 4u) << s.label;
+    if (s.label == "balance error") {
+      sign_of_balance = 1.0;
+      error = s.y;
+      continue;
+    }
+    const double sign = s.label == "load work" || s.label == "wall work" ? -1.0 : 1.0;
+    for (int k = 0; k < 4; ++k) drawn[k] += sign * s.y[k];
+  }
+  EXPECT_TRUE(crack);
+  EXPECT_TRUE(load);
+  ASSERT_EQ(sign_of_balance, 1.0);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(drawn[k], error[k], 1e-12) << "row " << k;
+  EXPECT_NEAR(error[3], -1.5, 1e-12);  // J/m: drawn unscaled
+}
+
 TEST(SeriesFigures, LongRunsPlotWindowMeansOfTheForce) {
   // 2000 steps of Δt = 1 ns under a steady 5 kN/m on a platen moving at 1 m/s, except that every
   // 100th step is cut to 1 ps and carries an 11 ns-worth impulse, as when the wall plane passes a
