@@ -113,6 +113,7 @@ PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
                             {"wall_work", "wall work", false},
                             {"load_work", "load work", true},
                             {"gravity_work", "gravity work", true},
+                            {"history_excess", "history excess (phase field, put in)", true},
                             {"balance_error", "balance error", false}};
   for (const Column& c : columns) {
     // Run files written before a term was booked have no such series.

@@ -78,6 +78,11 @@ const std::vector<ScalarColumn<D>>& scalar_columns() {
       {"fracture_energy",
        "crack energy of the phase field, G_c times the regularised crack area ([KT19] eq. (3))",
        true, "", [](const R& r) { return r.totals.fracture_energy; }, true},
+      {"history_excess",
+       "phase field: energy the crack growth took from the history field beyond the tensile "
+       "energy its degradation released, sum of V0 (g_old - g_new)(H - psi+) (cumulative; counted "
+       "as put in)",
+       true, "", [](const R& r) { return r.totals.history_excess; }, true},
       {"wall_work", "work of the walls on the material (cumulative)", true, "",
        [](const R& r) { return r.totals.wall_work; }},
       {"gravity_work", "work of gravity (cumulative)", true, "",
@@ -425,6 +430,7 @@ const std::vector<std::pair<const char*, double EnergyAccumulators::*>>& accumul
       {"transfer_dissipation", &EnergyAccumulators::transfer_dissipation},
       {"initial_energy", &EnergyAccumulators::initial_energy},
       {"fracture_energy", &EnergyAccumulators::fracture_energy},
+      {"history_excess", &EnergyAccumulators::history_excess},
   };
   return fields;
 }

@@ -327,7 +327,8 @@ struct Solver<D>::Impl {
         (row.kinetic + row.strain + s.totals.fracture_energy + s.totals.dissipated +
          s.totals.flow_dissipation + s.totals.friction_work + s.totals.contact_dissipation +
          s.totals.transfer_dissipation + s.totals.lost.kinetic + s.totals.lost.strain) -
-        (s.totals.initial_energy + s.totals.wall_work + s.totals.gravity_work + s.totals.load_work);
+        (s.totals.initial_energy + s.totals.wall_work + s.totals.gravity_work + s.totals.load_work +
+         s.totals.history_excess);
     for (std::size_t w = 0; w < s.problem.walls.size(); ++w)
       row.wall_displacement[w] = s.problem.walls[w].velocity.displacement(s.time);
     return std::nullopt;

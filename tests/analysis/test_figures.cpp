@@ -543,7 +543,9 @@ TEST(SeriesFigures, EnergyFigureDrawsEveryTermOfTheBalance) {
       error = s.y;
       continue;
     }
-    const double sign = s.label == "load work" || s.label == "wall work" ? -1.0 : 1.0;
+    const bool put_in = s.label == "load work" || s.label == "wall work" ||
+                        s.label == "gravity work" || s.label.starts_with("history excess");
+    const double sign = put_in ? -1.0 : 1.0;
     for (int k = 0; k < 4; ++k) drawn[k] += sign * s.y[k];
   }
   EXPECT_TRUE(crack);

@@ -217,6 +217,32 @@ TEST(PhaseField, UniformHistoryGivesThePointwiseSolutionEverywhere) {
   }
 }
 
+TEST(PhaseField, HistoryExcessIsWhatTheCrackTakesBeyondTheReleasedEnergy) {
+  // A strip at rest and unstrained (ψ⁺ = 0) is given a uniform history H = 0.7 G_c/(4 l₀) after
+  // its first solve, as if it had been loaded and unloaded. The next solve grows the uniform
+  // d = H / (a + H), a = G_c/(4 l₀), and Ψ_f = V a d², while no strain energy is released. The
+  // balance books (g_old − g_new)(H − ψ⁺) = (2d − d²) H per volume as put in by the history
+  // field, and what is left, Ψ_f − V (2d − d²) H = −V (a + H) d², is −Δcᵀ K Δc, the minimisation
+  // step's own term (docs/design.md §2.5, "Energy").
+  for (const char* shape : {"bspline2", "linear", "cpdi"}) {
+    mpm::Solver<2> solver(pipeline::parse_scene(
+        pipeline::phase_field_strip_scene(0.5e-3, shape, 20, 2e-3), "strip.toml"));
+    ASSERT_EQ(solver.accumulators().fracture_energy, 0.0);
+    const double a = Gc / (4 * l0), H = 0.7 * a;
+    for (double& h : solver.particles().damage_history) h = H;
+    ASSERT_FALSE(solver.step());
+    double volume = 0.0;
+    for (double v : solver.particles().volume0) volume += v;
+    const double d = H / (a + H);
+    const auto& row = solver.last_row();
+    const double scale = volume * a * d * d;
+    EXPECT_NEAR(row.kinetic + row.strain, 0.0, 1e-12 * scale) << shape;
+    EXPECT_NEAR(row.totals.fracture_energy / scale, 1.0, 1e-4) << shape;
+    EXPECT_NEAR(row.totals.history_excess / (volume * (2 * d - d * d) * H), 1.0, 1e-4) << shape;
+    EXPECT_NEAR(row.balance_error / (-volume * (a + H) * d * d), 1.0, 1e-4) << shape;
+  }
+}
+
 TEST(PhaseField, BodiesKeepSeparateFields) {
   // Two strips of the same material side by side, touching at x = 0: a crack in the left one
   // leaves the right one untouched (each body is its own field, [KT19] eq. (28)); the same

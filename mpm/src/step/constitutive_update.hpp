@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "fragmpm/mpm/crushed_flow.hpp"
 #include "fragmpm/mpm/damage_law.hpp"
@@ -20,6 +21,9 @@ struct ConstitutiveResult {
   double stored = 0.0;      ///< recoverable energy per reference volume [J/m³]
   double dissipated = 0.0;  ///< released by this update's damage increment [J/m³]
   double flowed = 0.0;      ///< released by the frictional flow of failed material [J/m³]
+  /// Phase field: what this step's crack growth took from the history field beyond the tensile
+  /// energy it released, (g_old − g_new)(H − ψ⁺) (docs/design.md §2.5, "Energy") [J/m³].
+  double history_excess = 0.0;
 };
 
 /// The elastic deformation F_e = F F_p⁻¹ of particle p: F itself unless failed material can flow.
@@ -57,12 +61,21 @@ inline ConstitutiveResult update_phase_field_particle(StepState<D>& state, std::
   const NeoHookean& model = state.models[material];
   const double lambda = model.bulk_modulus - 2.0 * model.shear_modulus / 3.0;
   const TensileSplit<D> split = hencky_tensile_split<D>(lambda, model.shear_modulus, P.F[p]);
-  if constexpr (AdvanceDamage)
+  double history_excess = 0.0;
+  if constexpr (AdvanceDamage) {
+    // The step's solve minimised g(d) H + the crack density with the history H of the last update,
+    // so its crack energy grew by Σ V₀ (g_old − g_new) H less a non-negative quadratic term
+    // (design.md §2.5), while the degradation releases only (g_old − g_new) ψ⁺ of strain energy.
+    const std::vector<double>& drop = state.phase_field->degradation_drop;
+    if (static_cast<std::size_t>(p) < drop.size())
+      history_excess =
+          drop[static_cast<std::size_t>(p)] * (P.damage_history[p] - split.tensile_energy);
     P.damage_history[p] = std::max(P.damage_history[p], split.tensile_energy);
+  }
   const double g =
       phase_field_degradation(P.damage[p], state.phase_field->residual_stiffness[material]);
   P.stress[p] = g * split.tensile_stress + split.compressive_stress;
-  return {g * split.tensile_energy + split.compressive_energy, 0.0};
+  return {g * split.tensile_energy + split.compressive_energy, 0.0, 0.0, history_excess};
 }
 
 /// AdvanceDamage: evaluate the damage law (the step); false keeps d (initial state, restart).

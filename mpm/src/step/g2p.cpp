@@ -52,7 +52,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   const bool penalty = state.penalty_walls;
   const double cell_size = state.grid.cell_size;
   double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0,
-         flowed = 0.0, penalty_work = 0.0, max_speed = 0.0;
+         flowed = 0.0, penalty_work = 0.0, max_speed = 0.0, history_excess = 0.0;
   std::int64_t failed = -1;
   const bool nonlocal = state.nonlocal_damage;
   if (nonlocal) size_array(state.local_equivalent, P.size());
@@ -61,7 +61,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   constexpr std::size_t per_thread = D + A;
   size_array(state.momentum_parts, per_thread * static_cast<std::size_t>(slots));
   std::fill(state.momentum_parts.begin(), state.momentum_parts.end(), 0.0);
-#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated, flowed, penalty_work) reduction(max : max_speed)
+#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated, flowed, penalty_work, history_excess) reduction(max : max_speed)
   {
     Stencil<D> s;
     Vec<D> momentum = Vec<D>::Zero();
@@ -112,6 +112,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
         strain += P.volume0[p] * energy.stored;
         dissipated += P.volume0[p] * energy.dissipated;
         flowed += P.volume0[p] * energy.flowed;
+        history_excess += P.volume0[p] * energy.history_excess;
         if constexpr (deform_domain)
           if (P.damage[p] >= 1.0)
             settle_failed_domain<D>(
@@ -163,6 +164,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   state.totals.wall_work += penalty_work;  // penalty walls (penalty_walls.cpp)
   state.totals.dissipated += dissipated;
   state.totals.flow_dissipation += flowed;
+  state.totals.history_excess += history_excess;
   state.next_dt_limit =
       max_speed > 0.0 ? state.problem.time.cfl * cell_size / (std::sqrt(double(D)) * max_speed)
                       : std::numeric_limits<double>::infinity();

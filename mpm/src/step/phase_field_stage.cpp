@@ -137,9 +137,17 @@ void solve_phase_field(StepState<D>& state) {
   for (std::int64_t p = 0; p < n; ++p)
     if (is_phase_field(p)) largest_history = std::max(largest_history, P.damage_history[p]);
   if (!(largest_history > 0.0)) {
+    reset_array(pf.degradation_drop, P.size(), 0.0);
 #pragma omp parallel for schedule(static)
     for (std::int64_t p = 0; p < n; ++p)
-      if (is_phase_field(p)) P.damage[p] = 0.0;
+      if (is_phase_field(p)) {
+        pf.degradation_drop[static_cast<std::size_t>(p)] =
+            phase_field_degradation(
+                P.damage[p], pf.residual_stiffness[static_cast<std::size_t>(P.material[p])]) -
+            phase_field_degradation(0.0,
+                                    pf.residual_stiffness[static_cast<std::size_t>(P.material[p])]);
+        P.damage[p] = 0.0;
+      }
     state.totals.fracture_energy = 0.0;
     pf.iterations = 0;
     pf.residual = 0.0;
@@ -465,12 +473,14 @@ void solve_phase_field(StepState<D>& state) {
   //    the particles keep d clamped to it.
   double crack_energy = 0.0;
   const Eigen::VectorXd& c = pf.solution;
+  size_array(pf.degradation_drop, P.size());
 #pragma omp parallel reduction(+ : crack_energy)
   {
     Stencil<D> s;
     std::array<Eigen::Vector3d, Stencil<D>::capacity> chi;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n; ++p) {
+      pf.degradation_drop[static_cast<std::size_t>(p)] = 0.0;
       if (!is_phase_field(p)) continue;
       fill_stencil<D, Kind>(P, p, grid, s);
       const std::size_t material = static_cast<std::size_t>(P.material[p]);
@@ -494,7 +504,11 @@ void solve_phase_field(StepState<D>& state) {
                       (value * value / (4.0 * l0) + l0 * gradient.squaredNorm());
       if (fourth_order)  // G_c l₀³ χᵀ Γ χ ([KT19] eq. (4))
         crack_energy += P.volume0[p] * curvature.dot(pf.fourth_order[material] * curvature);
-      P.damage[p] = std::clamp(value, 0.0, 1.0);
+      const double damage = std::clamp(value, 0.0, 1.0);
+      pf.degradation_drop[static_cast<std::size_t>(p)] =
+          phase_field_degradation(P.damage[p], pf.residual_stiffness[material]) -
+          phase_field_degradation(damage, pf.residual_stiffness[material]);
+      P.damage[p] = damage;
     }
   }
   state.totals.fracture_energy = crack_energy;

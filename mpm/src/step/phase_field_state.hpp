@@ -121,7 +121,10 @@ struct PhaseFieldState {
   bool direct = false;              ///< the last solve factorised K (sparse LDLᵀ)
   bool stopped_at_limit = false;    ///< its conjugate gradients stopped at the iteration limit
   int iterations = 0;               ///< of the last solve
-  double residual = 0.0;            ///< relative residual of the last solve
+  /// Per particle, g(d) before the last solve less g(d) after it (0 for other materials): the
+  /// step's constitutive update books (g_old − g_new)(H − ψ⁺) as the history excess.
+  std::vector<double> degradation_drop;
+  double residual = 0.0;  ///< relative residual of the last solve
 };
 
 }  // namespace fragmpm::mpm

@@ -179,10 +179,14 @@ std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& p
       "energy:     input {:.4g} J/m (initial {:.4g} + wall work {:.4g}); kinetic {:.4g}, strain "
       "{:.4g}, "
       "damage dissipation {:.4g}, crushed flow {:.4g}, crack energy {:.4g}, friction {:.4g}, "
-      "contact {:.4g}, transfer {:.4g} [J/m]\n",
+      "contact {:.4g}, transfer {:.4g} [J/m]{}\n",
       input, t.initial_energy, t.wall_work, r.last.kinetic, r.last.strain, t.dissipated,
       t.flow_dissipation, t.fracture_energy, t.friction_work, t.contact_dissipation,
-      t.transfer_dissipation);
+      t.transfer_dissipation,
+      t.history_excess != 0.0
+          ? fmt::format("; the phase field's history excess {:.4g} J/m is counted as put in",
+                        t.history_excess)
+          : std::string());
   s << fmt::format("balance:    error {:.4g} J/m = {:.3g} % of input\n", r.last.balance_error,
                    input > 0 ? 100.0 * std::abs(r.last.balance_error) / input : 0.0);
   if (!r.end_state.empty()) s << fmt::format("end state:  {}\n", r.end_state);

@@ -102,7 +102,7 @@ int execute(const RunArguments& args) {
         "fragmpm: done, %lld steps to t = %.6g s in %.2f s (%.3g particle-steps/s), %d frames "
         "-> %s\n  energy [J/m]: kinetic %.6g, strain %.6g, wall work %.6g, gravity work %.6g, "
         "load work %.6g, damage dissipation %.6g, crushed flow %.6g, crack energy (phase field) "
-        "%.6g, friction %.6g, "
+        "%.6g, history excess (phase field, put in) %.6g, friction %.6g, "
         "contact %.6g, transfer %.6g, "
         "balance error %.3g "
         "(%.2g %% of input)\n",
@@ -112,9 +112,9 @@ int execute(const RunArguments& args) {
             : 0.0,
         result.frames, file->path().c_str(), row.kinetic, row.strain, row.totals.wall_work,
         row.totals.gravity_work, row.totals.load_work, row.totals.dissipated,
-        row.totals.flow_dissipation, row.totals.fracture_energy, row.totals.friction_work,
-        row.totals.contact_dissipation, row.totals.transfer_dissipation, row.balance_error,
-        100.0 * std::abs(row.balance_error) / scale);
+        row.totals.flow_dissipation, row.totals.fracture_energy, row.totals.history_excess,
+        row.totals.friction_work, row.totals.contact_dissipation, row.totals.transfer_dissipation,
+        row.balance_error, 100.0 * std::abs(row.balance_error) / scale);
     // From the finished state, outside the step: J = det F far above 1 marks failed material
     // spreading out, a principal stress far above the strengths an unstable step.
     std::fprintf(stderr, "  end state: %s\n",

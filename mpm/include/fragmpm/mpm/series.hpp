@@ -39,6 +39,11 @@ struct EnergyAccumulators {
   /// running sum but a state (the energy the cracks hold), kept here because a restart cannot
   /// recompute it without the nodal field and must resume the balance exactly.
   double fracture_energy = 0.0;
+  /// Phase field: Σ V₀ (g_old − g_new)(H − ψ⁺) over the steps, the energy the crack growth took
+  /// from the history field H = max ψ⁺ beyond the tensile energy ψ⁺ its degradation released. The
+  /// history field makes the model itself non-conservative where a cracking particle has unloaded
+  /// since its peak (docs/design.md §2.5, "Energy"); the balance counts it as energy put in [J].
+  double history_excess = 0.0;
   LostParticles lost;
 };
 
@@ -52,7 +57,7 @@ struct SeriesRow {
   /// (kinetic + strain + fracture_energy + dissipated + flow_dissipation + friction_work +
   /// contact_dissipation +
   /// transfer_dissipation + lost kinetic + lost strain) − (initial + wall_work + gravity_work +
-  /// load_work): zero for an
+  /// load_work + history_excess): zero for an
   /// exact conservative scheme. What remains is the explicit step's own energy error (large at
   /// nodes an impact accelerates). With APIC the kinetic energy includes the affine part ½ m tr(C Q
   /// Cᵀ).
