@@ -141,11 +141,9 @@ void solve_phase_field(StepState<D>& state) {
 #pragma omp parallel for schedule(static)
     for (std::int64_t p = 0; p < n; ++p)
       if (is_phase_field(p)) {
+        const double k_f = pf.residual_stiffness[static_cast<std::size_t>(P.material[p])];
         pf.degradation_drop[static_cast<std::size_t>(p)] =
-            phase_field_degradation(
-                P.damage[p], pf.residual_stiffness[static_cast<std::size_t>(P.material[p])]) -
-            phase_field_degradation(0.0,
-                                    pf.residual_stiffness[static_cast<std::size_t>(P.material[p])]);
+            phase_field_degradation(P.damage[p], k_f) - phase_field_degradation(0.0, k_f);
         P.damage[p] = 0.0;
       }
     state.totals.fracture_energy = 0.0;
