@@ -101,27 +101,23 @@ PlotSpec energy_plot_spec(const mpm::RunSeries& run) {
     const char* name;
     const char* label;
     bool only_when_nonzero;
+    bool may_be_absent;  ///< booked after run files existed without it
   };
-  const Column columns[] = {{"kinetic", "kinetic", false},
-                            {"strain", "strain", false},
-                            {"fracture_energy", "crack energy (phase field)", true},
-                            {"dissipated", "dissipated (damage)", false},
-                            {"flow_dissipation", "crushed flow", true},
-                            {"friction_work", "friction work", false},
-                            {"contact_dissipation", "contact loss", false},
-                            {"transfer_dissipation", "transfer loss", false},
-                            {"wall_work", "wall work", false},
-                            {"load_work", "load work", true},
-                            {"gravity_work", "gravity work", true},
-                            {"history_excess", "history excess (phase field, put in)", true},
-                            {"balance_error", "balance error", false}};
+  const Column columns[] = {{"kinetic", "kinetic", false, false},
+                            {"strain", "strain", false, false},
+                            {"fracture_energy", "crack energy (phase field)", true, true},
+                            {"dissipated", "dissipated (damage)", false, false},
+                            {"flow_dissipation", "crushed flow", true, true},
+                            {"friction_work", "friction work", false, false},
+                            {"contact_dissipation", "contact loss", false, true},
+                            {"transfer_dissipation", "transfer loss", false, true},
+                            {"wall_work", "wall work", false, false},
+                            {"load_work", "load work", true, false},
+                            {"gravity_work", "gravity work", true, false},
+                            {"history_excess", "history excess (phase field, put in)", true, true},
+                            {"balance_error", "balance error", false, false}};
   for (const Column& c : columns) {
-    // Run files written before a term was booked have no such series.
-    const std::string_view column = c.name;
-    if ((c.only_when_nonzero || column == "contact_dissipation" ||
-         column == "transfer_dissipation") &&
-        !run.has(c.name))
-      continue;
+    if (c.may_be_absent && !run.has(c.name)) continue;
     if (c.only_when_nonzero) {
       const std::vector<double>& values = run.column(c.name);
       if (std::all_of(values.begin(), values.end(), [](double e) { return e == 0.0; })) continue;
