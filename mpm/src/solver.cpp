@@ -95,6 +95,8 @@ struct Solver<D>::Impl {
     s.plan.wall_gap_test = std::any_of(problem.walls.begin(), problem.walls.end(),
                                        [](const WallSpec<D>& w) { return w.gap_test; });
     s.plan.books_contact = s.plan.partitioned || !problem.walls.empty();
+    s.plan.books_strain_gap = problem.time.transfer != Transfer::apic &&
+                              problem.time.pic_fraction < 1.0 && problem.time.damping == 0.0;
     s.plan.principal_rule = problem.contact.nodal_gradient == NodalGradientRule::principal;
     s.kernel_radius = problem.grid.cell_size * std::sqrt(double(D));
     s.grid.origin = problem.grid.min;
@@ -257,7 +259,13 @@ struct Solver<D>::Impl {
     if constexpr (Thermal) thermal_finish<D, Kind, Partitioned>(s, dt);  // [XLS21] Alg. 1
     const double kinetic_from_nodes = s.row.kinetic + nodal_kinetic_energy_change(s);
     auto failure = grid_to_particles<D, Kind, Partitioned, Thermal, Affine>(s, dt);
-    if (!failure) s.totals.transfer_dissipation += kinetic_from_nodes - s.row.kinetic;
+    if (!failure) {
+      s.totals.transfer_dissipation += kinetic_from_nodes - s.row.kinetic;
+      // The strain side of the transfer gap (transfer_energy.cpp).
+      if (s.plan.books_strain_gap)
+        s.totals.transfer_dissipation +=
+            (1.0 - s.problem.time.pic_fraction) * (s.strain_gap.nodal - s.strain_gap.particles);
+    }
     return failure;
   }
 

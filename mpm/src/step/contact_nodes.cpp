@@ -37,7 +37,7 @@ void exchange_contact_momentum(StepState<D>& state, double dt) {
     const std::size_t i = static_cast<std::size_t>(sums.two_field_nodes[k]);
     const double m0 = N.mass[0][i], m1 = N.mass[1][i];
     if (m0 <= negligible) {  // everything mapped to field 1: it is the node's only field
-      N.touched[i] |= touched_by_contact;
+      N.touched[i] |= touched_by_contact | touched_by_merge;
       N.velocity[0][i] = N.velocity[1][i];
       N.velocity_lumped[0][i] = N.velocity_lumped[1][i];
       continue;
@@ -54,7 +54,7 @@ void exchange_contact_momentum(StepState<D>& state, double dt) {
       const double m = m0 + m1;
       const Vec<D> lumped = (N.momentum[0][i] + N.momentum[1][i]) / m;
       const Vec<D> velocity = (m0 * N.velocity[0][i] + m1 * N.velocity[1][i]) / m;
-      N.touched[i] |= touched_by_contact;
+      N.touched[i] |= touched_by_contact | touched_by_merge;
       for (int f = 0; f < 2; ++f) {
         N.velocity_lumped[f][i] = lumped;
         N.velocity[f][i] = velocity;

@@ -52,7 +52,13 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   const bool penalty = state.penalty_walls;
   const double cell_size = state.grid.cell_size;
   double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0,
-         flowed = 0.0, penalty_work = 0.0, max_speed = 0.0, history_excess = 0.0;
+         flowed = 0.0, penalty_work = 0.0, max_speed = 0.0, history_excess = 0.0,
+         free_overlap = 0.0;
+  // Σ_p m_p a_p·Σ_(free i) S̄_ip a_i, the particle half of the transfer's strain-side gap
+  // (transfer_energy.cpp); FLIP only.
+  const bool strain_gap = !Affine && state.plan.books_strain_gap;
+  const auto& touched = N.touched;
+  const bool any_touched = !touched.empty();
   std::int64_t failed = -1;
   const bool nonlocal = state.nonlocal_damage;
   if (nonlocal) size_array(state.local_equivalent, P.size());
@@ -61,7 +67,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   constexpr std::size_t per_thread = D + A;
   size_array(state.momentum_parts, per_thread * static_cast<std::size_t>(slots));
   std::fill(state.momentum_parts.begin(), state.momentum_parts.end(), 0.0);
-#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated, flowed, penalty_work, history_excess) reduction(max : max_speed)
+#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated, flowed, penalty_work, history_excess, free_overlap) reduction(max : max_speed)
   {
     Stencil<D> s;
     Vec<D> momentum = Vec<D>::Zero();
@@ -70,16 +76,21 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
 #pragma omp for schedule(static) nowait
     for (std::int64_t p = 0; p < n; ++p) {
       fill_stencil<D, Kind>(P, p, state.grid, s);
-      Vec<D> v_pic = Vec<D>::Zero(), v_change = Vec<D>::Zero();
+      Vec<D> v_pic = Vec<D>::Zero(), v_change = Vec<D>::Zero(), free_change = Vec<D>::Zero();
       Mat<D> velocity_gradient = Mat<D>::Zero();
       for (int e = 0; e < s.count; ++e) {
         const std::size_t i = static_cast<std::size_t>(s.node[e]);
         const int f = field_at<D, Partitioned>(state, p, e);
         const Vec<D>& velocity = N.velocity[f][i];
         v_pic += s.weight[e] * velocity;
-        if constexpr (!Affine) v_change += s.weight[e] * (velocity - N.velocity_lumped[f][i]);
+        if constexpr (!Affine) {
+          const Vec<D> received = s.weight[e] * (velocity - N.velocity_lumped[f][i]);
+          v_change += received;
+          if (strain_gap && (!any_touched || moves_freely(touched[i]))) free_change += received;
+        }
         velocity_gradient += velocity * s.gradient[e].transpose();
       }
+      if (strain_gap) free_overlap += P.mass[p] * v_change.dot(free_change);
       const Vec<D> displacement = dt * v_pic;
       P.x[p] += displacement;
       if constexpr (Affine) {
@@ -157,6 +168,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
     for (int k = 0; k < A; ++k)
       state.row.angular_momentum[k] += state.momentum_parts[t * per_thread + D + k];
   }
+  state.strain_gap.particles = 0.5 * free_overlap;
   state.row.kinetic = kinetic;
   state.row.strain = strain;
   state.totals.gravity_work += gravity_work;

@@ -67,9 +67,10 @@ void book_contact_energy(StepState<D>& state, double dt, double friction_before,
 
 /// The particles' kinetic energy after G2P as the nodes give it, less the starting kinetic energy:
 /// Σ_i (1 − ζ)(m l·a + ½ m|a|²) + ζ ½ m (|v|² − |l|²). The particles end with less by the
-/// transfer's smoothing, booked as transfer_dissipation. (transfer_energy.cpp)
+/// transfer's smoothing, booked as transfer_dissipation. With plan.books_strain_gap also fills
+/// strain_gap.nodal, the nodal half of the strain side of that loss. (transfer_energy.cpp)
 template <int D>
-double nodal_kinetic_energy_change(const StepState<D>& state);
+double nodal_kinetic_energy_change(StepState<D>& state);
 
 /// Nodal capacities and temperatures θⁿ, before the grid update. (thermal_stage.cpp)
 template <int D, ShapeFunctionKind Kind, bool Partitioned>

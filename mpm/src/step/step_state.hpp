@@ -30,11 +30,29 @@ struct StepPlan {
   bool wall_gap_test = false;       ///< a contact wall tests the material's position (walls.cpp)
   bool principal_rule = false;      ///< nodal gradient = principal direction of the gradient tensor
   bool books_contact = false;       ///< two-field nodes or walls exist: book the contact energy
-  bool phase_field = false;         ///< some material has the phase-field law: the nodal solve runs
+  /// FLIP without grid damping: book the strain side of the transfer gap (transfer_energy.cpp)
+  bool books_strain_gap = false;
+  bool phase_field = false;  ///< some material has the phase-field law: the nodal solve runs
 };
 
 /// Bits of NodeFields::touched: which stage changed a node's velocities this step.
-inline constexpr std::uint8_t touched_by_contact = 1, touched_by_wall = 2;
+/// touched_by_merge marks a contact node whose fields contact moved as one body without an
+/// exchange (not separable, or only the second field has mass): its velocity is still its lumped
+/// velocity plus its force increment, as at a node nothing touched.
+inline constexpr std::uint8_t touched_by_contact = 1, touched_by_wall = 2, touched_by_merge = 4;
+
+/// The node's velocity after contact and walls is its (merged) lumped velocity plus its force
+/// increment: no wall changed it and contact at most merged its fields (transfer_energy.cpp).
+inline bool moves_freely(std::uint8_t touched) {
+  return !(touched & touched_by_wall) &&
+         (!(touched & touched_by_contact) || (touched & touched_by_merge));
+}
+
+/// The two sums of one step's strain-side transfer gap (transfer_energy.cpp), FLIP only.
+struct StrainGapSums {
+  double nodal = 0.0;  ///< Σ over freely moving nodes and fields of ½ m |a|² [J per unit thickness]
+  double particles = 0.0;  ///< ½ Σ_p m_p a_p · Σ_(free i) S̄_ip a_i, filled by G2P
+};
 
 /// Per node and field (field 1 exists only when the step is partitioned).
 template <int D>
@@ -149,6 +167,7 @@ struct StepState {
   std::vector<Vec<D>> penalty_force;
   std::vector<double> penalty_measure;  ///< scratch: A_p of the penalty wall being applied
   bool penalty_walls = false;           ///< some wall is a penalty wall
+  StrainGapSums strain_gap;  ///< this step's, while the plan books it (plan.books_strain_gap)
   /// Per-thread sums of G2P: momentum (D) and angular momentum (1 in 2D, 3 in 3D) per thread.
   std::vector<double> momentum_parts;
   /// ψ_t per particle from the last constitutive update (thermal and damage only): the damage
