@@ -44,10 +44,10 @@ Bounce first_bounce(const std::string& cell_size) {
 
 // The elastic disk falls 13 mm at 5 m/s onto the floor and rebounds; the continuum bounce loses
 // nothing, the grid's stop of the arriving nodes loses O(h). Measured: 0.0224 J/m at 1 mm,
-// 0.0092 at 0.5 mm (order 1.28), 0.0034 at 0.25 mm (order 1.42). The transfer's smearing of the
-// nodal jump (transfer_dissipation) is 0.0386 and 0.0189 J/m at 1 and 0.5 mm (order 1.03); the
-// unbooked rest, the explicit step's error at the strongly accelerated nodes next to the floor, is
-// 2.2 % and 1.2 % of the input (6.1 % and 3.1 % before the transfer loss was booked).
+// 0.0092 at 0.5 mm (order 1.28), 0.0034 at 0.25 mm (order 1.42). The transfer's loss
+// (transfer_dissipation, both sides of the FLIP gap) is 0.0556 and 0.0289 J/m at 1 and 0.5 mm
+// (order 0.94); the unbooked rest, the explicit step's error, is 0.30 % and 0.047 % of the input
+// (2.2 % and 1.2 % with only the kinetic side of the gap booked, 6.1 % and 3.1 % with none).
 TEST(ContactEnergy, BounceLossFallsAtFirstOrderWithTheCellSize) {
   const Bounce coarse = first_bounce("1 mm");
   const Bounce fine = first_bounce("0.5 mm");
