@@ -22,20 +22,21 @@
 // v = λ + a, i.e. Δt (a − M⁻¹C a) farther. A step that moved it with λ + M⁻¹C a (the modified
 // update-stress-last, which projects the updated momenta again before the strain update) is a
 // symplectic Euler step of H = ½ pᵀ M⁻¹ C M⁻¹ p + U with p = M c (c the nodal coefficients of the
-// particles' velocity field), whose energy error is bounded and does not drift. The extra motion
-// costs the stored energy Δt f·(a − M⁻¹C a) per node. Where nothing changed the nodal velocity,
-// a = b = Δt f/m and this is b·(M a − C a)_i = 2 G_i, G_i = ½ a_i·(m_i a_i − (C a)_i), whose sum is
-// the kinetic gap above: the transfer takes twice the kinetic gap, and the nodal identities of
-// contact_energy.cpp see only the kinetic half, the other half showing as a steady deficit of the
-// explicit error −½ m |b|² against the strain energy's second-order term. (A 1D elastic bar whose
-// halves meet at ±1 m/s, no walls or contact: the unbooked energy equals the kinetic gap to 1 %
-// with every shape function.) At a node a wall or a contact exchange set, both steps impose the
-// same velocity, so no extra motion is booked there; a node whose fields were merged moves freely
-// as one field. The booked strain side is therefore Σ_free G_i = ½ Σ_free m |a|² − ½ Σ_p m_p
-// a_p·Σ_(free i) S̄_ip a_i (C is symmetric, so (C a)_i = Σ_p S̄_ip m_p a_p and the second sum is
-// gathered in G2P, no scatter). With the FLIP/PIC blend the FLIP share (1 − ζ) of it is booked;
-// APIC moves the material with the velocity its particles carry and books none; grid damping
-// changes a away from b and turns the term off (its energy is unbooked anyway).
+// particles' velocity field), whose energy error is bounded and does not drift (for weights held
+// fixed over the step). The extra motion costs the stored energy Δt f·(a − M⁻¹C a) per node. Where
+// nothing changed the nodal velocity, a = b = Δt f/m and this is b·(M a − C a)_i = 2 G_i, G_i = ½
+// a_i·(m_i a_i − (C a)_i), whose sum is the kinetic gap above: the transfer takes twice the kinetic
+// gap, and the nodal identities of contact_energy.cpp see only the kinetic half, the other half
+// showing as a steady deficit of the explicit error −½ m |b|² against the strain energy's
+// second-order term. (An elastic bar whose halves meet at ±1 m/s, no walls or contact: the
+// unbooked energy equals the kinetic gap to 1 % with every shape function.) At a node a wall or a
+// contact exchange set, both steps impose the same velocity, so no extra motion is booked there; a
+// node whose fields were merged moves freely as one field. The booked strain side is therefore
+// Σ_free G_i = ½ Σ_free m |a|² − ½ Σ_p m_p a_p·Σ_(free i) S̄_ip a_i (C is symmetric, so (C a)_i =
+// Σ_p S̄_ip m_p a_p and the second sum is gathered in G2P, no scatter). With the FLIP/PIC blend the
+// FLIP share (1 − ζ) of it is booked; APIC moves the material with the velocity its particles carry
+// and books none; grid damping changes a away from b and turns the term off (its energy is unbooked
+// anyway).
 #include "step/stages.hpp"
 
 namespace fragmpm::mpm {
