@@ -1,7 +1,8 @@
 // Transfer energy booking (transfer_energy.cpp): the kinetic energy the grid-to-particle transfer
 // removes. It vanishes where the nodal increments are uniform, it never decreases for the FLIP/PIC
 // blend (convexity of ½|v|² and Jensen on the weights), and for pure PIC it is the kinetic energy a
-// spinning disk loses.
+// spinning disk loses. Under FLIP it also books the strain side: the stress's work on the part of
+// the nodal increment the particles' momenta do not carry.
 #include <gtest/gtest.h>
 
 #include <cmath>
