@@ -58,7 +58,6 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   // (transfer_energy.cpp); FLIP only.
   const bool strain_gap = !Affine && state.plan.books_strain_gap;
   const auto& touched = N.touched;
-  const bool any_touched = !touched.empty();
   std::int64_t failed = -1;
   const bool nonlocal = state.nonlocal_damage;
   if (nonlocal) size_array(state.local_equivalent, P.size());
@@ -86,7 +85,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
         if constexpr (!Affine) {
           const Vec<D> received = s.weight[e] * (velocity - N.velocity_lumped[f][i]);
           v_change += received;
-          if (strain_gap && (!any_touched || moves_freely(touched[i]))) free_change += received;
+          if (strain_gap && moves_freely(touched, i)) free_change += received;
         }
         velocity_gradient += velocity * s.gradient[e].transpose();
       }

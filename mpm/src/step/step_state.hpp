@@ -41,11 +41,13 @@ struct StepPlan {
 /// velocity plus its force increment, as at a node nothing touched.
 inline constexpr std::uint8_t touched_by_contact = 1, touched_by_wall = 2, touched_by_merge = 4;
 
-/// The node's velocity after contact and walls is its (merged) lumped velocity plus its force
+/// Node i's velocity after contact and walls is its (merged) lumped velocity plus its force
 /// increment: no wall changed it and contact at most merged its fields (transfer_energy.cpp).
-inline bool moves_freely(std::uint8_t touched) {
-  return !(touched & touched_by_wall) &&
-         (!(touched & touched_by_contact) || (touched & touched_by_merge));
+/// touched is empty while the plan books no contact energy: then nothing touched any node.
+inline bool moves_freely(const std::vector<std::uint8_t>& touched, std::size_t i) {
+  if (touched.empty()) return true;
+  const std::uint8_t t = touched[i];
+  return !(t & touched_by_wall) && (!(t & touched_by_contact) || (t & touched_by_merge));
 }
 
 /// The two sums of one step's strain-side transfer gap (transfer_energy.cpp), FLIP only.

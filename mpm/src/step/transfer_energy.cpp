@@ -51,7 +51,6 @@ double nodal_kinetic_energy_change(StepState<D>& state) {
   double change = 0.0, free_increment = 0.0;
   const bool strain_gap = state.plan.books_strain_gap;
   const auto& touched = N.touched;
-  const bool any_touched = !touched.empty();
   for (int f = 0; f < state.fields(); ++f) {
     const auto& mass = N.mass[f];
     const auto& momentum = N.momentum[f];
@@ -70,8 +69,7 @@ double nodal_kinetic_energy_change(StepState<D>& state) {
       const double flip = m * (lumped.dot(received) + 0.5 * received.squaredNorm());
       const double projected = 0.5 * m * (velocity[i].squaredNorm() - lumped.squaredNorm());
       field_change += (1.0 - pic) * flip + pic * projected;
-      if (strain_gap && (!any_touched || moves_freely(touched[i])))
-        field_free += 0.5 * m * received.squaredNorm();
+      if (strain_gap && moves_freely(touched, i)) field_free += 0.5 * m * received.squaredNorm();
     }
     change += field_change;
     free_increment += field_free;
