@@ -209,6 +209,7 @@ struct Solver<D>::Impl {
     const std::int64_t n = static_cast<std::int64_t>(P.size());
     const bool affine = s.problem.time.transfer == Transfer::apic;
     const ShapeFunctionKind kind = s.problem.grid.shape_function;
+    if (s.plan.damage) s.release_before.assign(P.size(), 0.0);
 #pragma omp parallel for reduction(+ : kinetic, strain) schedule(static)
     for (std::int64_t p = 0; p < n; ++p) {
       strain += P.volume0[p] * update_constitutive<D, Thermal, false>(s, p, 0.0).stored;

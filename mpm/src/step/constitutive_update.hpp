@@ -111,6 +111,8 @@ inline ConstitutiveResult update_constitutive(
   const double d = P.damage[p];
   if (d <= 0.0) {
     P.stress[p] = trial;
+    // An intact particle's ψ_t is not needed: its first damage increment is booked at the end
+    // state alone (below).
     return {psi, 0.0};
   }
   // The damage increment releases ψ⁺ of the trial state; a failed particle's flow then dissipates
@@ -152,8 +154,21 @@ inline ConstitutiveResult update_constitutive(
   // volumetric-deviatoric and Hencky splits release at most ψ; the bound never acts on them.)
   const double degradable = std::clamp(degraded.degradable, 0.0, psi);
   P.stress[p] = degraded.stress;
-  if constexpr (Thermal) state.degradable[static_cast<std::size_t>(p)] = degradable;
-  const double released = flowed > 0.0 ? std::clamp(trial_tensile, 0.0, trial_psi) : degradable;
+  // The dissipation of the step is ∫ ψ_t dd over it ([XLS21] eq. (6): Y = ψ_t drives ḋ). Taken
+  // at the step's end, Δd ψ_t(end), it exceeds the integral by ½ Δd Δψ_t wherever the particle
+  // softens while it stretches, and the balance showed the excess as energy created. The
+  // trapezoid ½ Δd (ψ_t(start) + ψ_t(end)) is the integral to second order, and it makes the
+  // energy of the step, (1 − d_start) Δψ_t − ½ Δd Δψ_t, the quadratic form of the tangent
+  // dσ = (1 − d) C dε − σ̄⁺ dd that the explicit step integrates, instead of the secant's
+  // (docs/design.md §2.4, "Softening"). The first increment of a particle that was intact is booked
+  // at the end state (ψ_t is not kept for intact particles; the increment is small there).
+  // The step a failed particle starts to flow keeps its own release (crushed_flow.hpp).
+  const std::size_t index = static_cast<std::size_t>(p);
+  double released = flowed > 0.0 ? std::clamp(trial_tensile, 0.0, trial_psi) : degradable;
+  if (AdvanceDamage && flowed == 0.0 && damage_before > 0.0 && d > damage_before)
+    released = 0.5 * (state.release_before[index] + degradable);
+  state.release_before[index] = degradable;
+  if constexpr (Thermal) state.degradable[index] = flowed > 0.0 ? degradable : released;
   return {psi - d * degradable, (d - damage_before) * released, flowed};
 }
 

@@ -153,6 +153,7 @@ std::optional<NumericalFailure> remove_departed_particles(StepState<D>& state, d
   }
   P.erase(removed);
   erase_entries(state.degradable, removed);
+  erase_entries(state.release_before, removed);
   erase_entries(state.flow_heat, removed);
   remap_particle_references(state.problem, new_index);
   if (!state.load_force.empty()) state.load_force.resize(P.size());

@@ -172,9 +172,13 @@ struct StepState {
   StrainGapSums strain_gap;  ///< this step's, while the plan books it (plan.books_strain_gap)
   /// Per-thread sums of G2P: momentum (D) and angular momentum (1 in 2D, 3 in 3D) per thread.
   std::vector<double> momentum_parts;
-  /// ψ_t per particle from the last constitutive update (thermal and damage only): the damage
-  /// heat of the next thermal stage is booked from it.
+  /// The energy per reference volume a unit of damage released in the last constitutive update
+  /// (the mean of ψ_t over the step, see constitutive_update.hpp; thermal and damage only): the
+  /// damage heat of the next thermal stage is booked from it.
   std::vector<double> degradable;
+  /// ψ_t per particle at the end of the last constitutive update (damage laws only): the start of
+  /// the next step's release, whose dissipation takes the mean of ψ_t over the step.
+  std::vector<double> release_before;
   /// Thermal module with crushed flow only: the energy per reference volume the particle's flow
   /// dissipated this step [J/m³], heat for the thermal stage, which consumes it.
   std::vector<double> flow_heat;
