@@ -25,7 +25,8 @@ min = ["-3 mm", "-3 mm"]
 max = ["23 mm", "7 mm"]
 particles_per_cell = 2
 [time]
-cfl = )") + cfl + R"(
+cfl = )") +
+         cfl + R"(
 [[materials]]
 name = "quartz"
 E = "50 GPa"
