@@ -165,8 +165,9 @@ inline ConstitutiveResult update_constitutive(
   // The step a failed particle starts to flow keeps its own release (crushed_flow.hpp).
   const std::size_t index = static_cast<std::size_t>(p);
   double released = flowed > 0.0 ? std::clamp(trial_tensile, 0.0, trial_psi) : degradable;
-  if (AdvanceDamage && flowed == 0.0 && damage_before > 0.0 && d > damage_before)
-    released = 0.5 * (state.release_before[index] + degradable);
+  if constexpr (AdvanceDamage)
+    if (flowed == 0.0 && damage_before > 0.0 && d > damage_before)
+      released = 0.5 * (state.release_before[index] + degradable);
   state.release_before[index] = degradable;
   if constexpr (Thermal) state.degradable[index] = flowed > 0.0 ? degradable : released;
   return {psi - d * degradable, (d - damage_before) * released, flowed};
