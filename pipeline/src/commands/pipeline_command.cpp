@@ -152,11 +152,6 @@ struct RunFacts {
   std::vector<mpm::ModuleDecision> modules;
 };
 
-double input_energy(const mpm::SeriesRow<2>& row) {
-  return row.totals.initial_energy + std::abs(row.totals.wall_work) +
-         std::abs(row.totals.gravity_work) + std::abs(row.totals.load_work);
-}
-
 std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& previews,
                          const RunFacts& r, const AnalyzeResult* a, int threads, double setup_s,
                          double analysis_s, double total_s) {
@@ -174,7 +169,7 @@ std::string summary_text(const PipelineOptions& o, const std::vector<Preview>& p
                    r.frames,
                    r.failed ? ", STOPPED BY A NUMERICAL FAILURE: " + r.failure : std::string());
   const auto& t = r.last.totals;
-  const double input = input_energy(r.last);
+  const double input = mpm::energy_input(r.last);
   s << fmt::format(
       "energy:     input {:.4g} J/m (initial {:.4g} + wall work {:.4g}); kinetic {:.4g}, strain "
       "{:.4g}, "
@@ -261,7 +256,7 @@ Report pipeline_report(const PipelineOptions& o, const std::vector<Preview>& pre
   // Trust: the limits are those of the stability scenes (docs/verification.md).
   if (r.failed) report.checks.push_back({"numerical failure", r.failure, true});
   const auto& t = r.last.totals;
-  const double input = input_energy(r.last);
+  const double input = mpm::energy_input(r.last);
   const double share = input > 0 ? std::abs(r.last.balance_error) / input : 0.0;
   report.checks.push_back(
       {"energy balance",

@@ -93,10 +93,7 @@ int execute(const RunArguments& args) {
                    file->path().c_str());
       return 3;
     }
-    const double scale =
-        std::max(row.totals.initial_energy + std::abs(row.totals.wall_work) +
-                     std::abs(row.totals.gravity_work) + std::abs(row.totals.load_work),
-                 1e-300);
+    const double scale = std::max(mpm::energy_input(row), 1e-300);
     std::fprintf(
         stderr,
         "fragmpm: done, %lld steps to t = %.6g s in %.2f s (%.3g particle-steps/s), %d frames "

@@ -146,11 +146,10 @@ ThreeGrainRun run_three_grain(const ThreeGrainRunSpec& spec) {
   run.timing.steps = solver.step_count();
   run.timing.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  announce_run("three-grain " + spec.variant + " " + cell_label(spec.cell_size),
-               solver.particles().size(), run.timing.steps, solver.time(), run.timing.wall_seconds);
+  announce_run("three-grain " + spec.variant + " " + cell_label(spec.cell_size), solver,
+               run.timing.wall_seconds);
   const auto& last = solver.last_row();
-  run.input_energy = last.totals.initial_energy + last.totals.wall_work + last.totals.gravity_work +
-                     last.totals.load_work;
+  run.input_energy = mpm::energy_input(last);
   run.balance_error = last.balance_error;
   run.totals = last.totals;
   return run;

@@ -144,7 +144,7 @@ HertzLevel run_hertz_level(double cell_size) {
   level.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   announce_run("hertz " + cell_label(cell_size) + (level.converged ? "" : " (not converged)"),
-               solver.particles().size(), level.steps, level.relaxed_time, level.wall_seconds);
+               solver, level.wall_seconds);
 
   // Contact forces of the relaxed state, collected at the nodes x_i = i h of the flat.
   const auto& P = solver.particles();

@@ -29,11 +29,22 @@ inline std::string cell_label(double cell_size) {
   return text;
 }
 
-/// One progress line per finished run on stderr (verification runs take minutes each).
-inline void announce_run(const std::string& what, std::size_t particles, long long steps,
-                         double time, double wall_seconds) {
-  std::fprintf(stderr, "  %s: %zu particles, %lld steps to t = %.4g s in %.1f s\n", what.c_str(),
-               particles, steps, time, wall_seconds);
+/// One progress line per finished run on stderr (verification runs take minutes each), with the
+/// run's unexplained energy: a case that checks a dissipation or a fragment count is only as good
+/// as the balance of the run it reads.
+inline void announce_run(const std::string& what, const mpm::Solver<2>& solver,
+                         double wall_seconds) {
+  const mpm::SeriesRow<2>& row = solver.last_row();
+  std::fprintf(stderr, "  %s: %zu particles, %lld steps to t = %.4g s in %.1f s", what.c_str(),
+               solver.particles().size(), solver.step_count(), solver.time(), wall_seconds);
+  const double input = mpm::energy_input(row);
+  if (solver.problem().time.damping > 0.0)
+    std::fprintf(stderr, "; grid damping on, so the balance holds what it removed\n");
+  else if (input > 0.0)
+    std::fprintf(stderr, "; balance error %+.4g J/m, %.2f %% of the input %.4g J/m\n",
+                 row.balance_error, 100.0 * row.balance_error / input, input);
+  else
+    std::fprintf(stderr, "\n");
 }
 
 struct TimedRun {
@@ -68,7 +79,7 @@ TimedRun run_until(mpm::Solver<2>& solver, double end_time, const std::string& c
   run.steps = solver.step_count();
   run.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  announce_run(case_name, solver.particles().size(), run.steps, solver.time(), run.wall_seconds);
+  announce_run(case_name, solver, run.wall_seconds);
   return run;
 }
 

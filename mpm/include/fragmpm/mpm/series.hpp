@@ -1,6 +1,7 @@
 #pragma once
 // Per-step bookkeeping: energies, momentum, wall reactions (docs/design.md "Energy and momentum").
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -70,5 +71,14 @@ struct SeriesRow {
       wall_force;  ///< reaction exerted by the material on each wall [N per unit thickness]
   std::vector<Vec<D>> wall_displacement;  ///< [m]
 };
+
+/// The scale the balance error is quoted against: the energy the run started with plus the work
+/// done on it by walls, gravity and loads, each counted by magnitude so that a wall that takes
+/// energy out still counts as a channel [J per unit thickness in 2D].
+template <int D>
+double energy_input(const SeriesRow<D>& row) {
+  return row.totals.initial_energy + std::abs(row.totals.wall_work) +
+         std::abs(row.totals.gravity_work) + std::abs(row.totals.load_work);
+}
 
 }  // namespace fragmpm::mpm
