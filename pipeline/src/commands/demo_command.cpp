@@ -1,5 +1,5 @@
 // `fragmpm demo [-o DIR] [--small]`: the pipeline on the embedded scene
-// scenes/demo/sandstone-pack.toml (51 grains; --small: the 8 grains of
+// scenes/demo/sandstone-pack.toml (73 grains; --small: the 8 grains of
 // scenes/demo/sandstone-crush.toml) and the Miocene sandstone grain mask. The scene is compiled
 // into the program; the image is found on disk, first under $FRAGMPM_SOURCE_DIR/images, then in an
 // images/ folder beside the executable or any folder above it (./build/fragmpm of a clone finds
