@@ -42,9 +42,11 @@ double band_width(const mpm::Particles<2>& P) {
   return area / ligament;
 }
 
-/// length_over_cell: l_ch / h, or 0 for the scene's default l_ch.
+/// length_over_cell: l_ch / h, or 0 for the scene's default l_ch. column_strength: the weaker
+/// column's strength over σ_f.
 std::vector<VerifyRow> run_level(int level, double cell_size, double length_over_cell,
-                                 const std::string& averaging, const std::string& variant) {
+                                 const std::string& averaging, double column_strength,
+                                 const std::string& variant) {
   std::map<std::string, std::string> overrides{{"grid.cell_size", toml_number(cell_size)},
                                                {"materials[0].averaging", "\"" + averaging + "\""},
                                                {"output.interval", "0.0"}};
@@ -53,11 +55,12 @@ std::vector<VerifyRow> run_level(int level, double cell_size, double length_over
   const std::string text = with_overrides(embedded_scene("verify/bar-tension.toml"), overrides);
   mpm::Problem<2> problem = parse_scene(text, "scenes/verify/bar-tension.toml");
   // The imperfection that picks where the crack forms: the particle column just right of
-  // mid-length is 2 % weaker, so one row of particles reaches σ_f first.
+  // mid-length is weaker (2 % in the calibrated case), so one row of particles reaches σ_f first.
   auto& P = problem.particles;
   const double spacing = std::sqrt(P.volume0[0]);
   for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.x[p][0] > mid_length && P.x[p][0] < mid_length + spacing) P.strength[p] *= weaker;
+    if (P.x[p][0] > mid_length && P.x[p][0] < mid_length + spacing)
+      P.strength[p] *= column_strength;
   const auto& law = std::get<mpm::RankineSoftening>(problem.materials[0].damage);
   const double fracture_energy = law.fracture_energy;
   const double set_length = problem.materials[0].characteristic_length;
@@ -76,9 +79,9 @@ std::vector<VerifyRow> run_level(int level, double cell_size, double length_over
   dissipation.value = solver.last_row().totals.dissipated;
   dissipation.reference = fracture_energy * ligament;
   dissipation.error = relative_error(dissipation.value, dissipation.reference);
-  // docs/verification.md: the default (local) law within 5 % at every level; the nonlocal law is
-  // a labelled variant whose calibration is listed under the known shortfalls.
-  if (length_over_cell == 0.0 && averaging == "local") {
+  // docs/verification.md: the default (local) law within 5 % at every level; the nonlocal law and
+  // the 20 % flaw are labelled variants whose results are listed under the known shortfalls.
+  if (length_over_cell == 0.0 && averaging == "local" && column_strength == weaker) {
     dissipation.target_low = 0.95 * dissipation.reference;
     dissipation.target_high = 1.05 * dissipation.reference;
   }
@@ -209,16 +212,21 @@ std::vector<VerifyRow> verify_bar_tension(const VerifyOptions& options) {
   struct Variant {
     double length_over_cell;
     const char* averaging;
+    double column_strength;
     const char* name;
   };
-  const Variant variants[] = {{0.0, "local", "l_ch-default"},
-                              {1.0, "local", "l_ch-cell-size"},
-                              {std::sqrt(2.0), "local", "l_ch-cell-diagonal"},
-                              {0.0, "nonlocal", "nonlocal-default"}};
+  // The flaw variant shows what the default l_ch was calibrated on: with a column 20 % weaker
+  // instead of 2 %, the neighbouring rows never come near σ_f and do not soften, and the same
+  // law dissipates about 0.7 G_f (docs/verification.md, "Known shortfalls").
+  const Variant variants[] = {{0.0, "local", weaker, "l_ch-default"},
+                              {1.0, "local", weaker, "l_ch-cell-size"},
+                              {std::sqrt(2.0), "local", weaker, "l_ch-cell-diagonal"},
+                              {0.0, "nonlocal", weaker, "nonlocal-default"},
+                              {0.0, "local", 0.8, "l_ch-default-flaw-20%"}};
   for (const Variant& v : variants)
     for (std::size_t level = 0; level < cells.size(); ++level)
       for (auto& r : run_level(static_cast<int>(level), cells[level], v.length_over_cell,
-                               v.averaging, v.name))
+                               v.averaging, v.column_strength, v.name))
         rows.push_back(std::move(r));
   // Time to failure: τ from the cell diagonal (the default, [HH17] §2.7) and from the particle
   // size.
