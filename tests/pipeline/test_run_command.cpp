@@ -176,6 +176,35 @@ TEST(RunCommand, RestartReproducesUninterruptedApicRunBitForBit) {
   expect_restart_bit_identical("restart-apic", true);
 }
 
+// A softening particle books the mean of ψ_t over each step, so its next release starts from the
+// ψ_t the last step ended with (constitutive_update.hpp). A restart recomputes that value from the
+// checkpointed F and d; stopped at step 517, in the middle of the pulled bar's softening (damage
+// dissipation grows from step 420 to 840), the run must book the same dissipation, bit for bit.
+TEST(RunCommand, RestartInTheMiddleOfSofteningReproducesTheDissipationBitForBit) {
+  const fs::path dir = fresh_directory("restart-softening");
+  const std::string whole = (dir / "whole.h5").string(), parts = (dir / "parts.h5").string();
+  const std::string scene = std::string(FRAGMPM_SOURCE_DIR) + "/scenes/verify/bar-tension.toml";
+  ASSERT_EQ(run_fragmpm("run " + scene + " -o " + whole + " -q", (dir / "log1").string()), 0);
+  ASSERT_EQ(
+      run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps 517", (dir / "log2").string()),
+      0);
+  ASSERT_EQ(run_fragmpm("run --restart " + parts + " -q", (dir / "log3").string()), 0)
+      << read_text((dir / "log3").string());
+  for (const char* series : {"dissipated", "balance_error", "kinetic"}) {
+    const auto a = mpm::read_series(whole, series), b = mpm::read_series(parts, series);
+    ASSERT_EQ(a.size(), b.size()) << series;
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0) << series;
+  }
+  // The stop fell inside the softening: some dissipation before it, more than as much after.
+  const auto steps = mpm::read_series(whole, "step");
+  const auto dissipated = mpm::read_series(whole, "dissipated");
+  std::size_t stop = 0;
+  while (stop < steps.size() && steps[stop] < 517.0) ++stop;
+  ASSERT_LT(stop, steps.size());
+  EXPECT_GT(dissipated[stop], 0.0);
+  EXPECT_GT(dissipated.back(), 2.0 * dissipated[stop]);
+}
+
 namespace {
 
 // A one-particle pellet flying out of the domain at 100 m/s (it leaves at step 950 of 0.05 µs)
