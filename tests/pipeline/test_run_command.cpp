@@ -96,6 +96,35 @@ TEST(RunCommand, NumericalFailureExitsWithCode3AndKeepsFrames) {
   EXPECT_NE(read_text((dir / "log").string()).find("particle"), std::string::npos);
 }
 
+/// Runs `scene` into `parts` stopped after `stop_step` steps, then continues it with --restart
+/// from the checkpoint.
+void run_stopped_and_restarted(const fs::path& dir, const std::string& scene,
+                               const std::string& parts, long long stop_step) {
+  ASSERT_EQ(
+      run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps " + std::to_string(stop_step),
+                  (dir / "log2").string()),
+      0);
+  ASSERT_EQ(run_fragmpm("run --restart " + parts + " -q", (dir / "log3").string()), 0)
+      << read_text((dir / "log3").string());
+}
+
+/// Runs `scene` to its end into DIR/whole.h5, and into DIR/parts.h5 stopped after `stop_step`
+/// steps and restarted.
+void run_whole_and_restarted(const fs::path& dir, const std::string& scene, long long stop_step) {
+  ASSERT_EQ(run_fragmpm("run " + scene + " -o " + (dir / "whole.h5").string() + " -q",
+                        (dir / "log1").string()),
+            0)
+      << read_text((dir / "log1").string());
+  run_stopped_and_restarted(dir, scene, (dir / "parts.h5").string(), stop_step);
+}
+
+/// The series `name` of two run files agrees bit for bit.
+void expect_series_identical(const std::string& a, const std::string& b, const std::string& name) {
+  const auto sa = mpm::read_series(a, name), sb = mpm::read_series(b, name);
+  ASSERT_EQ(sa.size(), sb.size()) << name;
+  EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(double)), 0) << name;
+}
+
 /// Runs the disk bounce to 4 ms whole and in two parts (stopped at step 517, restarted from the
 /// checkpoint) and checks that the last frames and the series agree bit for bit.
 void expect_restart_bit_identical(const std::string& name, bool apic) {
@@ -107,12 +136,7 @@ void expect_restart_bit_identical(const std::string& name, bool apic) {
   // APIC carries C_p across the restart in the checkpoint.
   if (apic) text.replace(text.find("cfl = 0.4"), 9, "cfl = 0.4\ntransfer = \"apic\"");
   { std::ofstream(scene) << text; }
-  ASSERT_EQ(run_fragmpm("run " + scene + " -o " + whole + " -q", (dir / "log1").string()), 0);
-  ASSERT_EQ(
-      run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps 517", (dir / "log2").string()),
-      0);
-  ASSERT_EQ(run_fragmpm("run --restart " + parts + " -q", (dir / "log3").string()), 0)
-      << read_text((dir / "log3").string());
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_restarted(dir, scene, 517));
   auto a = mpm::RunFile<2>::open_existing(whole);
   auto b = mpm::RunFile<2>::open_existing(parts);
   double time_a = 0, time_b = 0;
@@ -125,11 +149,8 @@ void expect_restart_bit_identical(const std::string& name, bool apic) {
   EXPECT_EQ(std::memcmp(pa.x.data(), pb.x.data(), pa.size() * sizeof(pa.x[0])), 0);
   EXPECT_EQ(std::memcmp(pa.v.data(), pb.v.data(), pa.size() * sizeof(pa.v[0])), 0);
   EXPECT_EQ(std::memcmp(pa.stress.data(), pb.stress.data(), pa.size() * sizeof(pa.stress[0])), 0);
-  for (const char* series : {"kinetic", "angular_momentum"}) {
-    const auto ka = mpm::read_series(whole, series), kb = mpm::read_series(parts, series);
-    ASSERT_EQ(ka.size(), kb.size()) << series;
-    EXPECT_EQ(std::memcmp(ka.data(), kb.data(), ka.size() * sizeof(double)), 0) << series;
-  }
+  for (const char* series : {"kinetic", "angular_momentum"})
+    expect_series_identical(whole, parts, series);
 }
 
 // The phase field resumes from the checkpoint's d and history: the next solve starts from the same
@@ -144,13 +165,7 @@ TEST(RunCommand, PhaseFieldRestartReproducesUninterruptedRunBitForBit) {
   text.replace(text.find(cell), cell.size(), "cell_size = \"0.5 mm\"");
   text.replace(text.find(end), end.size(), "end_time = \"12 us\"");
   { std::ofstream(scene) << text; }
-  ASSERT_EQ(run_fragmpm("run " + scene + " -o " + whole + " -q", (dir / "log1").string()), 0)
-      << read_text((dir / "log1").string());
-  ASSERT_EQ(
-      run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps 150", (dir / "log2").string()),
-      0);
-  ASSERT_EQ(run_fragmpm("run --restart " + parts + " -q", (dir / "log3").string()), 0)
-      << read_text((dir / "log3").string());
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_restarted(dir, scene, 150));
   auto a = mpm::RunFile<2>::open_existing(whole);
   auto b = mpm::RunFile<2>::open_existing(parts);
   const auto pa = a.read_frame(a.frame_count() - 1);
@@ -158,14 +173,9 @@ TEST(RunCommand, PhaseFieldRestartReproducesUninterruptedRunBitForBit) {
   ASSERT_EQ(pa.size(), pb.size());
   EXPECT_EQ(std::memcmp(pa.damage.data(), pb.damage.data(), pa.size() * sizeof(double)), 0);
   EXPECT_EQ(std::memcmp(pa.stress.data(), pb.stress.data(), pa.size() * sizeof(pa.stress[0])), 0);
-  const auto fa = mpm::read_series(whole, "fracture_energy");
-  const auto fb = mpm::read_series(parts, "fracture_energy");
-  ASSERT_EQ(fa.size(), fb.size());
-  EXPECT_GT(fa.back(), 0.0);  // the crack has started by 12 µs
-  EXPECT_EQ(std::memcmp(fa.data(), fb.data(), fa.size() * sizeof(double)), 0);
-  const auto ea = mpm::read_series(whole, "balance_error");
-  const auto eb = mpm::read_series(parts, "balance_error");
-  EXPECT_EQ(std::memcmp(ea.data(), eb.data(), ea.size() * sizeof(double)), 0);
+  EXPECT_GT(mpm::read_series(whole, "fracture_energy").back(), 0.0);  // cracked by 12 µs
+  for (const char* series : {"fracture_energy", "balance_error"})
+    expect_series_identical(whole, parts, series);
 }
 
 TEST(RunCommand, RestartReproducesUninterruptedRunBitForBit) {
@@ -184,17 +194,9 @@ TEST(RunCommand, RestartInTheMiddleOfSofteningReproducesTheDissipationBitForBit)
   const fs::path dir = fresh_directory("restart-softening");
   const std::string whole = (dir / "whole.h5").string(), parts = (dir / "parts.h5").string();
   const std::string scene = std::string(FRAGMPM_SOURCE_DIR) + "/scenes/verify/bar-tension.toml";
-  ASSERT_EQ(run_fragmpm("run " + scene + " -o " + whole + " -q", (dir / "log1").string()), 0);
-  ASSERT_EQ(
-      run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps 517", (dir / "log2").string()),
-      0);
-  ASSERT_EQ(run_fragmpm("run --restart " + parts + " -q", (dir / "log3").string()), 0)
-      << read_text((dir / "log3").string());
-  for (const char* series : {"dissipated", "balance_error", "kinetic"}) {
-    const auto a = mpm::read_series(whole, series), b = mpm::read_series(parts, series);
-    ASSERT_EQ(a.size(), b.size()) << series;
-    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0) << series;
-  }
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_restarted(dir, scene, 517));
+  for (const char* series : {"dissipated", "balance_error", "kinetic"})
+    expect_series_identical(whole, parts, series);
   // The stop fell inside the softening: some dissipation before it, more than as much after.
   const auto steps = mpm::read_series(whole, "step");
   const auto dissipated = mpm::read_series(whole, "dissipated");
@@ -238,12 +240,7 @@ TEST(RunCommand, RestartAcrossARemovalReproducesUninterruptedRunBitForBit) {
   // Stopped before the removal (step 517) and after it (step 1000), then restarted.
   for (const long long split : {517LL, 1000LL}) {
     const std::string parts = (dir / ("parts" + std::to_string(split) + ".h5")).string();
-    ASSERT_EQ(
-        run_fragmpm("run " + scene + " -o " + parts + " -q --max-steps " + std::to_string(split),
-                    (dir / "log2").string()),
-        0);
-    ASSERT_EQ(run_fragmpm("run --restart " + parts + " -q", (dir / "log3").string()), 0)
-        << read_text((dir / "log3").string());
+    ASSERT_NO_FATAL_FAILURE(run_stopped_and_restarted(dir, scene, parts, split));
     auto a = mpm::RunFile<2>::open_existing(whole);
     auto b = mpm::RunFile<2>::open_existing(parts);
     const auto pa = a.read_frame(a.frame_count() - 1);
