@@ -280,6 +280,14 @@ TEST(PipelineCommand, TinyRunWritesEverything) {
   EXPECT_NE(page.find(steps[1].str() + " steps to t = "), std::string::npos);
   EXPECT_NE(page.find("energy balance"), std::string::npos);
   EXPECT_NE(page.find("largest volume ratio J"), std::string::npos);
+  // The largest stress and the departures have no limit: read, not judged, and not counted.
+  EXPECT_NE(page.find("<th>largest |principal stress|</th><td>"), std::string::npos);
+  EXPECT_EQ(page.find("<td class=\"info\">info</td>"),
+            page.find("</td>", page.find("<th>largest |principal stress|</th>")) + 5);
+  std::smatch verdict;
+  if (std::regex_search(page, verdict, std::regex(R"((\d+) of (\d+) checks need a look)"))) {
+    EXPECT_EQ(verdict[2].str(), "2") << "energy balance and J are the demo's limited checks";
+  }
   EXPECT_EQ(page.find("<script"), std::string::npos);
   EXPECT_EQ(page.find("http"), std::string::npos);  // nothing from the network
 }

@@ -38,7 +38,7 @@ h1{font-size:1.6em;margin-bottom:.2em}h2{font-size:1.25em;margin-top:2em;border-
 p.sub{color:#555;margin-top:0}
 table{border-collapse:collapse;margin:.5em 0}td,th{padding:.25em .8em;text-align:left;
 vertical-align:top;border-bottom:1px solid #e4e4e4}th{background:#f3f3f3}
-tr.attention td{background:#fff1e0}td.flag{font-weight:bold;color:#b35900}
+tr.attention td{background:#fff1e0}td.flag{font-weight:bold;color:#b35900}td.info{color:#666}
 .verdict{padding:.6em 1em;border-radius:4px;margin:1em 0}
 .ok{background:#eaf6ea;border:1px solid #9c9}.look{background:#fff1e0;border:1px solid #e0a060}
 .figures{display:flex;flex-wrap:wrap;gap:1.2em}
@@ -52,7 +52,10 @@ void rows(std::string& html, const std::vector<ReportRow>& list, bool flags) {
   for (const ReportRow& r : list) {
     html += r.attention ? "<tr class=\"attention\">" : "<tr>";
     html += "<th>" + escape(r.label) + "</th><td>" + escape(r.value) + "</td>";
-    if (flags) html += r.attention ? "<td class=\"flag\">look</td>" : "<td>ok</td>";
+    if (flags)
+      html += !r.limited    ? "<td class=\"info\">info</td>"
+              : r.attention ? "<td class=\"flag\">look</td>"
+                            : "<td>ok</td>";
     html += "</tr>\n";
   }
   html += "</table>\n";
@@ -66,15 +69,18 @@ std::string report_html(const Report& report) {
       escape(report.title) + "</title>\n<style>\n" + style + "</style>\n</head>\n<body>\n";
   html += "<h1>" + escape(report.title) + "</h1>\n";
   if (!report.subtitle.empty()) html += "<p class=\"sub\">" + escape(report.subtitle) + "</p>\n";
-  std::size_t attention = 0;
-  for (const ReportRow& r : report.checks) attention += r.attention ? 1 : 0;
-  if (!report.checks.empty())
+  std::size_t attention = 0, limited = 0;
+  for (const ReportRow& r : report.checks) {
+    attention += r.limited && r.attention ? 1 : 0;
+    limited += r.limited ? 1 : 0;
+  }
+  if (limited > 0)
     html += attention == 0
                 ? "<div class=\"verdict ok\">Every check below is within its limit.</div>\n"
                 : fmt::format(
                       "<div class=\"verdict look\">{} of {} checks need a look (marked "
                       "below).</div>\n",
-                      attention, report.checks.size());
+                      attention, limited);
   if (!report.summary.empty()) {
     html += "<h2>" + escape(report.summary_title) + "</h2>\n";
     rows(html, report.summary, false);

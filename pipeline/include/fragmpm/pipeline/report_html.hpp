@@ -11,6 +11,9 @@ struct ReportRow {
   std::string label, value;
   /// A check that failed or needs a look: the row is marked, and the page's header says so.
   bool attention = false;
+  /// False for a row of the checks table that has no limit (a value to read, such as the largest
+  /// stress): it shows "info" instead of a verdict and is not counted among the checks.
+  bool limited = true;
 };
 
 struct ReportFigure {
