@@ -274,15 +274,15 @@ Report pipeline_report(const PipelineOptions& o, const std::vector<Preview>& pre
                      r.extremes.swollen, mpm::swollen_volume_ratio),
          r.extremes.swollen > 0});
     // No limit: the damage laws bound tension only, so a compressed contact may carry any stress.
-    report.checks.push_back({"largest |principal stress|",
-                             analysis::format_si(r.extremes.largest_stress, "Pa", 4), false,
-                             false});
+    report.checks.push_back({.label = "largest |principal stress|",
+                             .value = analysis::format_si(r.extremes.largest_stress, "Pa", 4),
+                             .limited = false});
   }
   // No limit: with [grid] outside = "remove" departures are part of the run and booked.
   report.checks.push_back(
-      {"particles removed",
-       fmt::format("{} left the domain (mass {:.4g} kg/m)", t.lost.count, t.lost.mass), false,
-       false});
+      {.label = "particles removed",
+       .value = fmt::format("{} left the domain (mass {:.4g} kg/m)", t.lost.count, t.lost.mass),
+       .limited = false});
 
   ReportSection segmentation{"Segmentation", {}}, fields{"Fields at the last frame", {}},
       maps{"Fragment maps", {}}, statistics{"Fragment statistics", {}},
