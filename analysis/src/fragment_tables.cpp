@@ -273,7 +273,8 @@ std::vector<mpm::TableColumn> fragment_frame_datasets(const FrameFragments& fram
   add_table(out, "table", frame.fragments, frame.has_temperature);
   add_table(out, "fines", frame.fines, frame.has_temperature);
   out.push_back({"particle_fragment", "1",
-                 "fragment id of each particle (table/id or fines/id), -1 = masked (d >= d_mask)",
+                 "fragment id of each particle (table/id or fines/id), -1 = masked (d >= d_mask), "
+                 "-2 = another body than the one analysed (analyze --body)",
                  frame.labels.fragment});
   add_cdf(out, "cdf/equivalent_diameter", frame.equivalent_diameter, "m", "equivalent diameter");
   add_cdf(out, "cdf/roundness", frame.roundness, "1", "roundness");

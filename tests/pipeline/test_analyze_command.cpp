@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -47,8 +48,9 @@ fs::path fresh_directory(const std::string& name) {
 }
 
 /// A 20 x 21 block of particles; `cuts` = 0 intact, 1 masked middle row (2 fragments), 2 also a
-/// masked column through the upper half (3 fragments).
-fm::Particles<2> block(int cuts) {
+/// masked column through the upper half (3 fragments). With `two_bodies` the ten right-hand
+/// columns are body 1.
+fm::Particles<2> block(int cuts, bool two_bodies = false) {
   fm::Particles<2> P;
   P.resize(20 * 21);
   std::size_t p = 0;
@@ -60,13 +62,14 @@ fm::Particles<2> block(int cuts) {
       P.domain[p] = fm::Mat<2>::Identity() * kSpacing;
       if (cuts >= 1 && j == 10) P.damage[p] = 1.0;
       if (cuts >= 2 && j > 10 && i == 9) P.damage[p] = 1.0;
+      if (two_bodies && i >= 10) P.body[p] = 1;
     }
   return P;
 }
 
 /// Run file with frames at t = 0, 10, 20 µs (0, 1, 2 cuts) and a platen that has moved 0, 0.1, 0.2
 /// mm. Without `damage` the frames keep every field but damage.
-std::string write_run(const fs::path& dir, bool damage = true) {
+std::string write_run(const fs::path& dir, bool damage = true, bool two_bodies = false) {
   const std::string path = (dir / "tiny.h5").string();
   fm::RunMeta meta;
   meta.scene_path = "tiny.toml";
@@ -84,7 +87,7 @@ std::string write_run(const fs::path& dir, bool damage = true) {
     row.wall_force = {fm::Vec<2>::Zero(), fm::Vec<2>::Zero()};
     row.wall_displacement = {fm::Vec<2>::Zero(), fm::Vec<2>(0.0, -1e-4 * k)};
     rows.push_back(row);
-    file.write_frame(row.step, row.time, block(k), fields);
+    file.write_frame(row.step, row.time, block(k, two_bodies), fields);
   }
   file.append_series(rows);
   return path;
@@ -169,6 +172,41 @@ TEST(AnalyzeCommand, ChoosesFramesByPlatenDisplacementAndSaysWhenItReplacesGroup
   EXPECT_NE(log.find("/fragments/000002 replaced the group of an earlier analyze"),
             std::string::npos)
       << log;
+}
+
+TEST(AnalyzeCommand, BodyAnalysesOneBodysFragmentsAlone) {
+  const fs::path dir = fresh_directory("body");
+  const std::string run = write_run(dir, true, true);
+  const fs::path out = dir / "out";
+  ASSERT_EQ(run_fragmpm("analyze " + run + " --frame last --body 1 --no-figures -o " + out.string(),
+                        dir / "log"),
+            0)
+      << read_text(dir / "log");
+  const std::string log = read_text(dir / "log");
+  EXPECT_NE(log.find("fragments of body 1 only (210 of 420 particles)"), std::string::npos) << log;
+  // The whole block has three fragments at frame 2 (200, 100 and 90 particles); the right-hand
+  // body alone is cut by the masked row only, into two of 10 columns x 10 rows.
+  const auto table = lines(out / "fragments_000002.csv");
+  ASSERT_EQ(table.size(), 3u);
+  EXPECT_EQ(table[1].rfind("0,100,", 0), 0u) << table[1];
+  EXPECT_EQ(table[2].rfind("1,100,", 0), 0u) << table[2];
+  const auto series = lines(out / "fragment_series.csv");
+  ASSERT_EQ(series.size(), 4u);
+  EXPECT_EQ(series[1].rfind("0,0,0,0,1,0,", 0), 0u) << series[1];
+  EXPECT_EQ(series[3].rfind("2,200,2e-05,0.0002,2,0,", 0), 0u) << series[3];
+  // particle_fragment still has a row per particle of the frame: the other body's are -2, the
+  // masked row's ten particles of body 1 are -1.
+  const fm::h5::File file = fm::h5::File::open(run, false);
+  const auto ids = file.root().read<std::int32_t>("fragments/000002/particle_fragment").values;
+  ASSERT_EQ(ids.size(), 420u);
+  EXPECT_EQ(std::count(ids.begin(), ids.end(), -2), 210);
+  EXPECT_EQ(std::count(ids.begin(), ids.end(), -1), 10);
+  // A body the run does not have is refused, naming those it has.
+  EXPECT_EQ(run_fragmpm("analyze " + run + " --body 5 --no-figures", dir / "log"), 2);
+  EXPECT_NE(read_text(dir / "log")
+                .find("--body 5: no particle of that body in frame 0; the run's bodies are 0, 1"),
+            std::string::npos)
+      << read_text(dir / "log");
 }
 
 TEST(AnalyzeCommand, RunFileWithoutDamageDataExitsWith2) {

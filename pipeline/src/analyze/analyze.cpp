@@ -4,7 +4,9 @@
 #include "fragmpm/pipeline/analyze.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -280,19 +282,60 @@ AnalyzeResult analyze_run(const AnalyzeOptions& given, std::FILE* log) {
     say(log, fmt::format("  mask d >= {}, fines below {} particles", o.fragments.d_mask,
                          o.fragments.min_particles));
 
+    // --body: the chosen body's particles in the first frame, whose count and mass give what of
+    // it left the domain by a later frame.
+    std::size_t body_particles = 0;
+    double body_mass = 0.0;
+    if (o.body >= 0) {
+      if (reference.body.size() != reference.size())
+        throw AnalyzeError(
+            fmt::format("{}: frame {} has no 'body' dataset, so --body cannot pick "
+                        "a body's particles",
+                        path, first.index));
+      std::vector<std::int32_t> present;
+      for (std::size_t p = 0; p < reference.size(); ++p) {
+        if (reference.body[p] == o.body) ++body_particles, body_mass += reference.mass[p];
+        if (std::find(present.begin(), present.end(), reference.body[p]) == present.end())
+          present.push_back(reference.body[p]);
+      }
+      std::sort(present.begin(), present.end());
+      if (body_particles == 0)
+        throw AnalyzeError(
+            fmt::format("{}: --body {}: no particle of that body in frame {}; the "
+                        "run's bodies are {}",
+                        path, o.body, first.index, fmt::join(present, ", ")));
+      say(log, fmt::format("  fragments of body {} only ({} of {} particles)", o.body,
+                           body_particles, reference.size()));
+    }
+
     std::size_t next = 0;  // next entry of `selection`
     for (std::size_t k = 0; k < run.frames.size(); ++k) {
       const FrameInfo& info = run.frames[k];
-      const mpm::Particles<2> current =
+      const mpm::Particles<2> whole_frame =
           k == 0 ? reference : read_analysis_frame(file, run, info.index);
       // Particles removed after leaving the domain are missing from later frames; the rest find
       // their reference configuration by id.
       analysis::FrameReference matched;
       try {
-        matched = analysis::frame_reference(reference, current);
+        matched = analysis::frame_reference(reference, whole_frame);
       } catch (const std::invalid_argument& e) {
         throw AnalyzeError(fmt::format("{}: {} does not match the reference frame {}: {}", path,
                                        frame_group(info.index), first.index, e.what()));
+      }
+      // With --body, the body's rows of this frame (`kept`) and of the reference.
+      std::vector<std::size_t> kept;
+      mpm::Particles<2> current;
+      if (o.body >= 0) {
+        for (std::size_t p = 0; p < whole_frame.size(); ++p)
+          if (whole_frame.body[p] == o.body) kept.push_back(p);
+        current = whole_frame.select(kept);
+        matched.particles = matched.particles.select(kept);
+        double mass_now = 0.0;
+        for (std::size_t p : kept) mass_now += whole_frame.mass[p];
+        matched.departed = body_particles - kept.size();
+        matched.departed_mass = std::max(0.0, body_mass - mass_now);
+      } else {
+        current = whole_frame;
       }
       auto count_departed = [&matched](analysis::FragmentSummary& s) {
         s.departed_particles = matched.departed;
@@ -314,6 +357,12 @@ AnalyzeResult analyze_run(const AnalyzeOptions& given, std::FILE* log) {
           f.request = selection[next].request;
           f.fragments = analysis::analyze_fragments(matched.particles, current, o.fragments);
           count_departed(f.fragments.summary);
+          if (o.body >= 0) {  // particle_fragment covers the whole frame, as without --body
+            std::vector<std::int32_t> labels(whole_frame.size(), other_body_fragment);
+            for (std::size_t r = 0; r < kept.size(); ++r)
+              labels[kept[r]] = f.fragments.labels.fragment[r];
+            f.fragments.labels.fragment = std::move(labels);
+          }
           point.summary = f.fragments.summary;
           say(log, fmt::format("  {} -> frame {} (t = {}, step {}{}): {}", f.request, f.frame,
                                analysis::format_si(f.time, "s", 4), f.step,

@@ -1,5 +1,6 @@
 // `fragmpm analyze RUN.h5 [--at TIMES|--at-displacement DISPLACEMENTS] [--frame N] [--platen NAME]
-// [-o DIR] [--d-mask 0.99] [--min-particles 4]` (docs/design.md). The work is analyze_run.
+// [-o DIR] [--d-mask 0.99] [--min-particles 4] [--body N]` (docs/design.md). The work is
+// analyze_run.
 #include <cstdio>
 #include <memory>
 
@@ -66,6 +67,10 @@ void add_analyze_command(CLI::App& app, CommandResult& result) {
                 "Fragments with fewer particles are reported as fines (4 = one cell at 2 x 2 "
                 "particles per cell)")
       ->capture_default_str();
+  c->add_option("--body", o.body,
+                "Analyse only this body's particles: its index in the frames' 'body' field (the "
+                "order of the scene's bodies and grains). Default: all bodies")
+      ->check(CLI::NonNegativeNumber);
   c->add_flag("--csv-only", a->csv_only, "Do not write /fragments/ groups into the run file");
   c->add_flag("--no-figures", a->no_figures, "Do not write the PNG figures");
   c->callback([a, mask, &result] {

@@ -3,6 +3,7 @@
 // analysis (docs/design.md): fragments of chosen frames of a run file, their tables (CSV and
 // /fragments/NNNNNN/ in the run file), number- and mass-weighted CDFs of equivalent diameter and
 // roundness, fragment count and mean size against time over every frame, and the figures.
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
@@ -27,6 +28,9 @@ struct AnalyzeError : std::runtime_error {
 /// plate-impact verification reads its cracks.
 inline constexpr double phase_field_fragment_mask = 0.9;
 
+/// particle_fragment of a particle that `--body` left out (another body than the one analysed).
+inline constexpr std::int32_t other_body_fragment = -2;
+
 struct AnalyzeOptions {
   std::string run_path;
   /// Times ("20us") or platen displacements ("0.8mm"), told apart by their unit.
@@ -40,6 +44,9 @@ struct AnalyzeOptions {
   /// Directory for CSV tables and figures; empty = RUN_fragments beside the run file.
   std::string output_dir;
   analysis::FragmentOptions fragments;
+  /// Analyse only the particles of this body (the frames' `body` field: the order of the scene's
+  /// bodies and grains); −1 = all. A grain's own fragments, e.g. the top grain of a crushed column.
+  int body = -1;
   /// fragments.d_mask was chosen by the user; otherwise a run with a phase-field material is
   /// masked at d ≥ phase_field_fragment_mask (its cracks approach d = 1 only as they open).
   bool d_mask_given = false;
