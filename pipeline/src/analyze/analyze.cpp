@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <set>
 
 #include "analyze_frames.hpp"
 #include "fragmpm/analysis/figure_error.hpp"
@@ -292,13 +293,9 @@ AnalyzeResult analyze_run(const AnalyzeOptions& given, std::FILE* log) {
             fmt::format("{}: frame {} has no 'body' dataset, so --body cannot pick "
                         "a body's particles",
                         path, first.index));
-      std::vector<std::int32_t> present;
-      for (std::size_t p = 0; p < reference.size(); ++p) {
+      const std::set<std::int32_t> present(reference.body.begin(), reference.body.end());
+      for (std::size_t p = 0; p < reference.size(); ++p)
         if (reference.body[p] == o.body) ++body_particles, body_mass += reference.mass[p];
-        if (std::find(present.begin(), present.end(), reference.body[p]) == present.end())
-          present.push_back(reference.body[p]);
-      }
-      std::sort(present.begin(), present.end());
       if (body_particles == 0)
         throw AnalyzeError(
             fmt::format("{}: --body {}: no particle of that body in frame {}; the "
@@ -324,19 +321,18 @@ AnalyzeResult analyze_run(const AnalyzeOptions& given, std::FILE* log) {
       }
       // With --body, the body's rows of this frame (`kept`) and of the reference.
       std::vector<std::size_t> kept;
-      mpm::Particles<2> current;
+      mpm::Particles<2> body_frame;
       if (o.body >= 0) {
         for (std::size_t p = 0; p < whole_frame.size(); ++p)
           if (whole_frame.body[p] == o.body) kept.push_back(p);
-        current = whole_frame.select(kept);
+        body_frame = whole_frame.select(kept);
         matched.particles = matched.particles.select(kept);
         double mass_now = 0.0;
         for (std::size_t p : kept) mass_now += whole_frame.mass[p];
         matched.departed = body_particles - kept.size();
         matched.departed_mass = std::max(0.0, body_mass - mass_now);
-      } else {
-        current = whole_frame;
       }
+      const mpm::Particles<2>& current = o.body >= 0 ? body_frame : whole_frame;
       auto count_departed = [&matched](analysis::FragmentSummary& s) {
         s.departed_particles = matched.departed;
         s.departed_mass = matched.departed_mass;
