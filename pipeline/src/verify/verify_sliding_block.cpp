@@ -65,16 +65,15 @@ constexpr double stiff_block_factor = 10.0;
 /// The four laws of V2 in docs/verification.md (k v_max = 0.5 and S_a = 0.3 N follow the loading)
 /// and the smooth static-dynamic law on the stiff block.
 std::vector<Variant> variants(const SlidingBlockLoading& b, double final_speed) {
+  const std::string smooth_static_dynamic =
+      "{ law = \"static-dynamic\", mu_static = 0.4, mu_dynamic = 0.2, half_velocity = 0.05 }";
   return {{"coulomb", toml_number(coulomb_coefficient)},
           {"velocity-dependent", "{ law = \"velocity-dependent\", mu = 0.2, slope = " +
                                      toml_number(0.5 / final_speed) + " }"},
           {"adhesion", "{ law = \"adhesion\", mu = 0.2, shear_strength = " +
                            toml_number(0.3 * b.normal_stress) + " }"},
-          {"static-dynamic",
-           "{ law = \"static-dynamic\", mu_static = 0.4, mu_dynamic = 0.2, half_velocity = 0.05 }"},
-          {"static-dynamic-stiff",
-           "{ law = \"static-dynamic\", mu_static = 0.4, mu_dynamic = 0.2, half_velocity = 0.05 }",
-           stiff_block_factor}};
+          {"static-dynamic", smooth_static_dynamic},
+          {"static-dynamic-stiff", smooth_static_dynamic, stiff_block_factor}};
 }
 
 /// Sets the two traction loads and the end time from the recomputed loading, so that the applied
