@@ -89,6 +89,7 @@ struct VerifyArguments {
   int threads = 0;
   std::vector<std::string> variants;
   int level = -1;
+  long long max_steps = 0;
 };
 
 int execute(const VerifyArguments& args) {
@@ -99,6 +100,7 @@ int execute(const VerifyArguments& args) {
   options.output_directory = args.output;
   options.variants = args.variants;
   options.level = args.level;
+  options.max_steps = args.max_steps;
   const bool selecting = !args.variants.empty() || args.level >= 0;
   if (args.list) {
     for (const auto& c : verify_cases())
@@ -229,6 +231,12 @@ void add_verify_command(CLI::App& app, CommandResult& result) {
       ->add_option("--level", args->level,
                    "Only this level of the case (0 the coarsest; with the cases of --variant)")
       ->check(CLI::NonNegativeNumber);
+  verify
+      ->add_option("--max-steps", args->max_steps,
+                   "Stop the runs kept in a run file (plate-impact at level 1, hours each) after "
+                   "this many steps, with a checkpoint in DIR/CASE/VARIANT-hH.h5; the same command "
+                   "continues them")
+      ->check(CLI::PositiveNumber);
   verify->callback([args, &result] { result.exit_code = execute(*args); });
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <utility>
 
 #include "fragmpm/analysis/frame_figure.hpp"
 #include "fragmpm/analysis/particle_figure.hpp"
@@ -19,12 +20,26 @@ PhaseFieldSnapshots phase_field_snapshots(const std::vector<double>& wanted_us) 
   return s;
 }
 
-void take_snapshot(PhaseFieldSnapshots& snapshots, const mpm::Solver<2>& solver) {
+namespace {
+
+bool snapshot_due(const PhaseFieldSnapshots& snapshots, double time) {
   const std::size_t next = snapshots.frames.size();
-  if (next >= snapshots.wanted.size() || solver.time() < snapshots.wanted[next] - 1e-9) return;
+  return next < snapshots.wanted.size() && time >= snapshots.wanted[next] - 1e-9;
+}
+
+}  // namespace
+
+void take_snapshot(PhaseFieldSnapshots& snapshots, const mpm::Solver<2>& solver) {
+  if (!snapshot_due(snapshots, solver.time())) return;
   snapshots.frames.push_back(
       mpm::with_current_domains<2>(solver.particles(), solver.problem().grid.shape_function));
   snapshots.times.push_back(solver.time());
+}
+
+void take_snapshot(PhaseFieldSnapshots& snapshots, mpm::Particles<2> frame, double time) {
+  if (!snapshot_due(snapshots, time)) return;
+  snapshots.frames.push_back(std::move(frame));
+  snapshots.times.push_back(time);
 }
 
 void write_phase_field_panels(const PhaseFieldSnapshots& snapshots, const std::string& png_path,

@@ -23,6 +23,9 @@ PhaseFieldSnapshots phase_field_snapshots(const std::vector<double>& wanted_us);
 /// use it observe at a cadence that lands on every wanted time.
 void take_snapshot(PhaseFieldSnapshots& snapshots, const mpm::Solver<2>& solver);
 
+/// The same for a frame read back from a run file, `frame` holding each particle's current domain.
+void take_snapshot(PhaseFieldSnapshots& snapshots, mpm::Particles<2> frame, double time);
+
 /// Writes `png_path` (its folder is created): the phase field d in [0, 1] of every frame taken,
 /// three panels to a row, each titled with `title` and its time. Prints the path to stderr. Does
 /// nothing when no frame was taken.

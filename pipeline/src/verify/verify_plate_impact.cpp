@@ -15,8 +15,10 @@
 #include <numbers>
 #include <vector>
 
+#include "fragmpm/mpm/run_file_reader.hpp"
 #include "fragmpm/pipeline/embedded_scenes.hpp"
 #include "fragmpm/pipeline/scene.hpp"
+#include "fragmpm/pipeline/stored_run.hpp"
 #include "phase_field_snapshots.hpp"
 #include "verify_run.hpp"
 
@@ -39,13 +41,13 @@ struct CrackState {
   double strain = 0.0, fracture_energy = 0.0;
 };
 
-/// The crack's tip and the number of bands of cracked particles in y behind it.
-CrackState observe(const mpm::Solver<2>& solver) {
-  const auto& P = solver.particles();
+/// The crack's tip and the number of bands of cracked particles in y behind it, at `time` with
+/// the plate's strain and crack energy then [J/m].
+CrackState observe(const mpm::Particles<2>& P, double time, double strain, double fracture_energy) {
   CrackState s;
-  s.time = solver.time();
-  s.strain = solver.last_row().strain;
-  s.fracture_energy = solver.accumulators().fracture_energy;
+  s.time = time;
+  s.strain = strain;
+  s.fracture_energy = fracture_energy;
   s.tip_x = -std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < P.size(); ++p)
     if (P.damage[p] >= cracked && P.x[p][0] > s.tip_x) {
@@ -79,17 +81,53 @@ struct PlateVariant {
   double fracture_energy;  ///< G_c or Ḡ_c [J/m²]
 };
 
-/// `figure_directory`: where the phase field at the paper's time points goes (empty: nowhere).
-std::vector<VerifyRow> run_plate(const PlateVariant& v, double cell_size, int level,
-                                 const std::string& figure_directory) {
-  std::map<std::string, std::string> overrides{{"output.interval", "0.0"}};
+void print_observation(const CrackState& c) {
+  std::fprintf(stderr,
+               "    t = %5.1f us: tip (%.2f, %.2f) mm, %d band(s), strain %.4f J/m, crack energy "
+               "%.4f J/m\n",
+               c.time * 1e6, c.tip_x * 1e3, c.tip_y * 1e3, c.bands, c.strain, c.fracture_energy);
+}
+
+/// The plate scene of variant `v` at `cell_size`, with frames of the phase field every `frames`
+/// seconds (TOML; "0.0": the first and last only).
+std::string plate_scene(const PlateVariant& v, double cell_size, const std::string& frames) {
+  std::map<std::string, std::string> overrides{{"output.interval", frames}};
   overrides["grid.cell_size"] = toml_number(cell_size);
   overrides["materials[0].fracture_energy"] = toml_number(v.fracture_energy);
+  if (frames != "0.0") overrides["output.fields"] = "[\"damage\"]";
   std::string text = with_overrides(embedded_scene("paper/plate-impact.toml"), overrides);
   if (v.anisotropy)
     text =
         insert_after_line(text, "fracture_energy = ", std::string("anisotropy = ") + v.anisotropy);
-  mpm::Solver<2> solver(parse_scene(text, "scenes/paper/plate-impact.toml"));
+  return text;
+}
+
+/// The phase field at the paper's time points, beside the case's CSV (nothing when
+/// `figure_directory` is empty).
+void write_plate_panels(const PlateVariant& v, int level, double cell,
+                        const PhaseFieldSnapshots& snapshots, const std::string& figure_directory) {
+  if (figure_directory.empty()) return;
+  // The quick level keeps the figure's name from before the paper's cell was a level.
+  char file_name[96];
+  if (level == 0)
+    std::snprintf(file_name, sizeof file_name, "%s-phase-field.png", v.name);
+  else
+    std::snprintf(file_name, sizeof file_name, "%s-h%gmm-phase-field.png", v.name, cell * 1e3);
+  write_phase_field_panels(snapshots,
+                           (std::filesystem::path(figure_directory) / file_name).string(),
+                           std::string("Plate under impact, ") + v.name + ", " + cell_label(cell));
+}
+
+/// The rows of one run from its observations, one a microsecond.
+std::vector<VerifyRow> plate_rows(const VerifyRow& level_data,
+                                  const std::vector<CrackState>& history);
+
+/// `figure_directory`: where the phase field at the paper's time points goes (empty: nowhere).
+/// Observed in memory, every microsecond.
+std::vector<VerifyRow> run_plate(const PlateVariant& v, double cell_size, int level,
+                                 const std::string& figure_directory) {
+  mpm::Solver<2> solver(
+      parse_scene(plate_scene(v, cell_size, "0.0"), "scenes/paper/plate-impact.toml"));
   const double cell = solver.problem().grid.cell_size;
   std::vector<CrackState> history;
   // [KT19] Fig. 7, 9 and 11 show the phase field at 0, 50, 65 and 80 µs.
@@ -99,26 +137,73 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v, double cell_size, int le
       run_until(solver, solver.problem().stop.end_time,
                 std::string("plate-impact ") + v.name + " " + cell_label(cell), 1e-6,
                 [&](const mpm::Solver<2>& s) {
-                  history.push_back(observe(s));
+                  history.push_back(observe(s.particles(), s.time(), s.last_row().strain,
+                                            s.accumulators().fracture_energy));
                   take_snapshot(snapshots, s);
-                  const CrackState& c = history.back();
-                  std::fprintf(stderr,
-                               "    t = %5.1f us: tip (%.2f, %.2f) mm, %d band(s), "
-                               "strain %.4f J/m, crack energy %.4f J/m\n",
-                               c.time * 1e6, c.tip_x * 1e3, c.tip_y * 1e3, c.bands, c.strain,
-                               c.fracture_energy);
+                  print_observation(history.back());
                 });
-  if (!figure_directory.empty()) {
-    // The quick level keeps the figure's name from before the paper's cell was a level.
-    char file_name[96];
-    if (level == 0)
-      std::snprintf(file_name, sizeof file_name, "%s-phase-field.png", v.name);
-    else
-      std::snprintf(file_name, sizeof file_name, "%s-h%gmm-phase-field.png", v.name, cell * 1e3);
-    write_phase_field_panels(
-        snapshots, (std::filesystem::path(figure_directory) / file_name).string(),
-        std::string("Plate under impact, ") + v.name + ", " + cell_label(cell));
+  write_plate_panels(v, level, cell, snapshots, figure_directory);
+  return plate_rows(level_row("plate-impact", v.name, level, cell, solver, run), history);
+}
+
+/// The same run kept in the run file FIGURE_DIRECTORY/VARIANT-hH.h5 with frames every microsecond
+/// (stored_run.hpp): `max_steps` > 0 stops it after that many steps, and the same command
+/// continues it. Observed from the frames once it has reached 80 µs; no rows before.
+std::vector<VerifyRow> run_plate_stored(const PlateVariant& v, double cell_size, int level,
+                                        const std::string& figure_directory, long long max_steps) {
+  mpm::Solver<2> solver(
+      parse_scene(plate_scene(v, cell_size, "1e-6"), "scenes/paper/plate-impact.toml"));
+  const double cell = solver.problem().grid.cell_size;
+  char file_name[96];
+  std::snprintf(file_name, sizeof file_name, "%s-h%gmm.h5", v.name, cell * 1e3);
+  const std::string path = (std::filesystem::path(figure_directory) / file_name).string();
+  const std::string what = std::string("plate-impact ") + v.name + " " + cell_label(cell);
+  const StoredRun stored = run_stored(solver, path, max_steps, what);
+  if (!stored.finished) return {};
+  // The frames hold x and d; the panels draw each particle on its reference domain (the plate
+  // strains by less than 10⁻³), looked up by the particle's id.
+  const auto& reference = solver.problem().particles;
+  std::vector<std::size_t> by_id(reference.size());
+  for (std::size_t p = 0; p < reference.size(); ++p)
+    by_id[static_cast<std::size_t>(reference.id[p])] = p;
+  const mpm::RunFileReader reader = mpm::RunFileReader::open(path);
+  const mpm::RunSeries series = reader.read_series({"step", "strain", "fracture_energy"});
+  const std::vector<double>& steps = series.column("step");
+  const std::vector<double>& strain = series.column("strain");
+  const std::vector<double>& crack_energy = series.column("fracture_energy");
+  std::vector<CrackState> history;
+  PhaseFieldSnapshots snapshots = phase_field_snapshots({0.0, 50.0, 65.0, 80.0});
+  for (const mpm::FrameEntry& entry : reader.frames()) {
+    double time = 0.0;
+    long long step = 0;
+    mpm::Particles<2> frame = reader.read_frame<2>(entry.index, &time, &step);
+    const std::size_t row = static_cast<std::size_t>(
+        std::lower_bound(steps.begin(), steps.end(), static_cast<double>(step)) - steps.begin());
+    if (row >= steps.size() || steps[row] != static_cast<double>(step))
+      throw std::runtime_error(path + ": frame " + std::to_string(entry.index) + " at step " +
+                               std::to_string(step) + " has no /series row");
+    // Observed every microsecond; a run stopped by --max-steps also left a frame where it stopped.
+    const double microseconds = time * 1e6;
+    if (std::abs(microseconds - std::round(microseconds)) > 1e-6) continue;
+    if (step > 0) {
+      history.push_back(observe(frame, time, strain[row], crack_energy[row]));
+      print_observation(history.back());
+    }
+    frame.domain.resize(frame.size());
+    for (std::size_t p = 0; p < frame.size(); ++p)
+      frame.domain[p] = reference.domain[by_id[static_cast<std::size_t>(frame.id[p])]];
+    take_snapshot(snapshots, std::move(frame), time);
   }
+  write_plate_panels(v, level, cell, snapshots, figure_directory);
+  TimedRun run;
+  run.steps = stored.steps;
+  run.wall_seconds = stored.wall_seconds;
+  run.largest_dt = stored.largest_dt;
+  return plate_rows(level_row("plate-impact", v.name, level, cell, solver, run), history);
+}
+
+std::vector<VerifyRow> plate_rows(const VerifyRow& level_data,
+                                  const std::vector<CrackState>& history) {
   // Start: the first observation with the tip past the notch; branching: the first with two bands.
   const CrackState* start = nullptr;
   const CrackState* branch = nullptr;
@@ -146,8 +231,7 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v, double cell_size, int le
                                 : 0.0;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto row = [&](const std::string& metric, double value, double reference) {
-    return metric_row(level_row("plate-impact", v.name, level, cell, solver, run), metric, value,
-                      reference);
+    return metric_row(level_data, metric, value, reference);
   };
   std::vector<VerifyRow> rows;
   rows.push_back(
@@ -218,8 +302,14 @@ std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options) {
     if (!selected(options, v.name, level)) return;
     // `--quick` runs the isotropic case unless a variant is named.
     if (options.quick && v.anisotropy && options.variants.empty()) return;
+    const std::string directory = case_directory(options, "plate-impact");
+    // The runs at the paper's cell take hours: they are kept in a run file, so that `--max-steps`
+    // can stop one and the same command continue it (with `--max-steps`, a quick run as well).
     append_run_rows(options, v.name, cell_size,
-                    run_plate(v, cell_size, level, case_directory(options, "plate-impact")), rows);
+                    (level == 1 || options.max_steps > 0) && !directory.empty()
+                        ? run_plate_stored(v, cell_size, level, directory, options.max_steps)
+                        : run_plate(v, cell_size, level, directory),
+                    rows);
   };
   if (!options.quick) add(variants[0], 0.125e-3, 1);
   for (const PlateVariant& v : variants) add(v, 0.25e-3, 0);

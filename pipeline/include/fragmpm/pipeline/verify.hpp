@@ -44,6 +44,10 @@ struct VerifyOptions {
   std::vector<std::string> variants;
   /// `--level`: only this level of the case (0 the coarsest); −1: every level the run runs.
   int level = -1;
+  /// `--max-steps`: the runs kept in a run file (stored_run.hpp: plate-impact at the paper's cell)
+  /// stop after this many steps of this invocation, to be continued by the same command; 0: run
+  /// to the end.
+  long long max_steps = 0;
 };
 
 /// The cases whose runs `--variant` and `--level` can pick among: the long phase-field runs at
