@@ -76,6 +76,26 @@ TEST(VerifyReport, TargetsDecidePassOrFail) {
   EXPECT_FALSE(report_case(dir, "case", {row, below}));
 }
 
+// A run stopped short by --max-steps reports no rows: nothing is written, and the CSV of an
+// earlier, finished invocation stays as it was.
+TEST(VerifyReport, NoRowsWriteNothingAndKeepTheEarlierCsv) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "fragmpm_test_verify_no_rows";
+  std::filesystem::remove_all(dir);
+  EXPECT_TRUE(report_case(dir.string(), "case", {}));
+  EXPECT_FALSE(std::filesystem::exists(dir / "case.csv"));
+  const VerifyRow row{.case_name = std::string("case"),
+                      .variant = std::string("v"),
+                      .metric = std::string("m"),
+                      .value = 1.0,
+                      .reference = 1.0,
+                      .error = 0.0};
+  EXPECT_TRUE(report_case(dir.string(), "case", {row}));
+  const auto size = std::filesystem::file_size(dir / "case.csv");
+  EXPECT_TRUE(report_case(dir.string(), "case", {}));
+  EXPECT_EQ(std::filesystem::file_size(dir / "case.csv"), size);
+}
+
 // A comma in a row's name must not shift the CSV's columns: the error-versus-time figure reads the
 // file back by splitting at commas (a plate-impact row's name once held one, and the figure was
 // refused).

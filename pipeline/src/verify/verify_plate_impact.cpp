@@ -146,6 +146,14 @@ std::vector<VerifyRow> run_plate(const PlateVariant& v, double cell_size, int le
   return plate_rows(level_row("plate-impact", v.name, level, cell, solver, run), history);
 }
 
+/// FIGURE_DIRECTORY/VARIANT-hH.h5, where the run of `v` at `cell_size` is kept.
+std::string stored_plate_path(const PlateVariant& v, double cell_size,
+                              const std::string& figure_directory) {
+  char file_name[96];
+  std::snprintf(file_name, sizeof file_name, "%s-h%gmm.h5", v.name, cell_size * 1e3);
+  return (std::filesystem::path(figure_directory) / file_name).string();
+}
+
 /// The same run kept in the run file FIGURE_DIRECTORY/VARIANT-hH.h5 with frames every microsecond
 /// (stored_run.hpp): `max_steps` > 0 stops it after that many steps, and the same command
 /// continues it. Observed from the frames once it has reached 80 µs; no rows before.
@@ -154,9 +162,7 @@ std::vector<VerifyRow> run_plate_stored(const PlateVariant& v, double cell_size,
   mpm::Solver<2> solver(
       parse_scene(plate_scene(v, cell_size, "1e-6"), "scenes/paper/plate-impact.toml"));
   const double cell = solver.problem().grid.cell_size;
-  char file_name[96];
-  std::snprintf(file_name, sizeof file_name, "%s-h%gmm.h5", v.name, cell * 1e3);
-  const std::string path = (std::filesystem::path(figure_directory) / file_name).string();
+  const std::string path = stored_plate_path(v, cell_size, figure_directory);
   const std::string what = std::string("plate-impact ") + v.name + " " + cell_label(cell);
   const StoredRun stored = run_stored(solver, path, max_steps, what);
   if (!stored.finished) return {};
@@ -304,11 +310,14 @@ std::vector<VerifyRow> verify_plate_impact(const VerifyOptions& options) {
     if (options.quick && v.anisotropy && options.variants.empty()) return;
     const std::string directory = case_directory(options, "plate-impact");
     // The runs at the paper's cell take hours: they are kept in a run file, so that `--max-steps`
-    // can stop one and the same command continue it (with `--max-steps`, a quick run as well).
+    // can stop one and the case continue it. A quick run goes the same way when `--max-steps`
+    // is given or its run file is there.
+    const bool stored =
+        !directory.empty() && (level == 1 || options.max_steps > 0 ||
+                               std::filesystem::exists(stored_plate_path(v, cell_size, directory)));
     append_run_rows(options, v.name, cell_size,
-                    (level == 1 || options.max_steps > 0) && !directory.empty()
-                        ? run_plate_stored(v, cell_size, level, directory, options.max_steps)
-                        : run_plate(v, cell_size, level, directory),
+                    stored ? run_plate_stored(v, cell_size, level, directory, options.max_steps)
+                           : run_plate(v, cell_size, level, directory),
                     rows);
   };
   if (!options.quick) add(variants[0], 0.125e-3, 1);

@@ -25,6 +25,15 @@ double observed_order(const VerifyRow& coarse, const VerifyRow& fine) {
 
 bool report_case(const std::string& directory, const std::string& case_name,
                  const std::vector<VerifyRow>& rows, const std::string& selection) {
+  if (rows.empty()) {
+    // Only a run kept in a run file and stopped short of its end (--max-steps) reports nothing;
+    // the CSV of an earlier, finished invocation stays as it was.
+    std::printf(
+        "\n%s: no run finished, nothing to report yet (the same command continues a run "
+        "stopped by --max-steps)\n",
+        case_name.c_str());
+    return true;
+  }
   std::filesystem::create_directories(directory);
   const std::string stem = selection.empty() ? case_name : case_name + "-" + selection;
   const std::string path = (std::filesystem::path(directory) / (stem + ".csv")).string();

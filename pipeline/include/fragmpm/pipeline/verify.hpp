@@ -141,7 +141,8 @@ double observed_order(const VerifyRow& coarse, const VerifyRow& fine);
 /// Writes DIR/CASE.csv (DIR/CASE-SELECTION.csv when `selection` is not empty, so that a run of
 /// one variant keeps the full table of an earlier run; creating DIR) and prints the table with
 /// orders and PASS/FAIL against each row's target to stdout. Returns false when a row with a target
-/// missed it.
+/// missed it. No rows (every run of the selection stopped short by --max-steps) writes nothing,
+/// says so and returns true.
 bool report_case(const std::string& directory, const std::string& case_name,
                  const std::vector<VerifyRow>& rows, const std::string& selection = "");
 
