@@ -69,8 +69,8 @@ StoredRun run_stored(mpm::Solver<2>& solver, const std::string& path, long long 
   file.reset();  // closed before it is read back
   stored.finished = solver.time() >= end_time * (1.0 - 1e-12);
   stored.steps = solver.step_count();
-  for (double dt : mpm::RunFileReader::open(path).read_series({"dt"}).column("dt"))
-    stored.largest_dt = std::max(stored.largest_dt, dt);
+  const mpm::RunSeries series = mpm::RunFileReader::open(path).read_series({"dt"});
+  for (double dt : series.column("dt")) stored.largest_dt = std::max(stored.largest_dt, dt);
   if (stored.finished)
     announce_run(what, solver, stored.wall_seconds);
   else
