@@ -58,12 +58,7 @@ int execute(const RunArguments& args) {
       std::string output = args.output;
       if (output.empty())
         output = std::filesystem::path(args.scene).filename().replace_extension(".h5").string();
-      mpm::RunMeta meta;
-      meta.scene_path = problem.scene_path;
-      meta.scene_text = problem.scene_text;
-      meta.modules = mpm::plan_modules<2>(problem);
-      for (const auto& w : problem.walls) meta.wall_names.push_back(w.name);
-      file.emplace(mpm::RunFile<2>::create(output, meta, args.overwrite));
+      file.emplace(mpm::RunFile<2>::create(output, run_meta(problem), args.overwrite));
     }
     const auto modules = mpm::plan_modules<2>(problem);
     std::fprintf(stderr,

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "fragmpm/mpm/current_domain.hpp"
@@ -45,6 +47,24 @@ class ProgressLine {
 };
 
 }  // namespace
+
+mpm::RunMeta run_meta(const mpm::Problem<2>& problem) {
+  mpm::RunMeta meta;
+  meta.scene_path = problem.scene_path;
+  meta.scene_text = problem.scene_text;
+  meta.modules = mpm::plan_modules<2>(problem);
+  for (const auto& w : problem.walls) meta.wall_names.push_back(w.name);
+  return meta;
+}
+
+bool restore_from_checkpoint(mpm::Solver<2>& solver, mpm::RunFile<2>& file) {
+  std::optional<mpm::Checkpoint<2>> checkpoint = file.read_checkpoint();
+  if (!checkpoint) return false;
+  file.truncate_after(checkpoint->step);
+  solver.restore(checkpoint->time, checkpoint->step, checkpoint->totals,
+                 std::move(checkpoint->particles), std::move(checkpoint->phase_field));
+  return true;
+}
 
 RunLoopResult run_loop(mpm::Solver<2>& solver, mpm::RunFile<2>& file,
                        const RunLoopOptions& options) {

@@ -31,23 +31,14 @@ StoredRun run_stored(mpm::Solver<2>& solver, const std::string& path, long long 
           path +
           " holds a run of another scene than this case's (an earlier build's, or other "
           "options); move it away to start this run afresh");
-    auto checkpoint = file->read_checkpoint();
-    if (!checkpoint)
+    if (!restore_from_checkpoint(solver, *file))
       throw std::invalid_argument(path +
                                   " has no /checkpoint to continue from; move it away to "
                                   "start this run afresh");
-    file->truncate_after(checkpoint->step);
-    solver.restore(checkpoint->time, checkpoint->step, checkpoint->totals,
-                   std::move(checkpoint->particles), std::move(checkpoint->phase_field));
     continuing = true;
   } else {
     std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-    mpm::RunMeta meta;
-    meta.scene_path = problem.scene_path;
-    meta.scene_text = problem.scene_text;
-    meta.modules = mpm::plan_modules<2>(problem);
-    for (const auto& w : problem.walls) meta.wall_names.push_back(w.name);
-    file.emplace(mpm::RunFile<2>::create(path, meta, false));
+    file.emplace(mpm::RunFile<2>::create(path, run_meta(problem), false));
   }
   const double end_time = problem.stop.end_time;
   StoredRun stored;

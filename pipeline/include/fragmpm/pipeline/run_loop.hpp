@@ -25,6 +25,13 @@ struct RunLoopResult {
   double wall_seconds = 0.0;
 };
 
+/// /meta of a new run file for `problem`: its scene, modules and wall names.
+mpm::RunMeta run_meta(const mpm::Problem<2>& problem);
+
+/// Restores `solver` (built from the file's scene) from `file`'s checkpoint and drops the frames
+/// and series rows written after it. False, and nothing changed, when the file has no checkpoint.
+bool restore_from_checkpoint(mpm::Solver<2>& solver, mpm::RunFile<2>& file);
+
 /// Runs until the problem's stop condition (or the override). A numerical failure is recorded in
 /// the file's /meta, the frames and series written so far stay, and the result says failed.
 RunLoopResult run_loop(mpm::Solver<2>& solver, mpm::RunFile<2>& file,
