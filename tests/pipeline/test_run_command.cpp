@@ -11,11 +11,14 @@
 
 #include "../support/departure_scene.hpp"
 #include "../support/read_text.hpp"
+#include "../support/run_file_checks.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace fragmpm;
 
+using fragmpm::test_support::expect_series_identical;
+using fragmpm::test_support::fresh_directory;
 using fragmpm::test_support::read_text;
 
 namespace {
@@ -24,13 +27,6 @@ int run_fragmpm(const std::string& arguments, const std::string& log) {
   const std::string command = std::string(FRAGMPM_BINARY) + " " + arguments + " > " + log + " 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-fs::path fresh_directory(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("fragmpm_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
 }
 
 const std::string disk_bounce = std::string(FRAGMPM_SOURCE_DIR) + "/scenes/disk-bounce.toml";
@@ -119,12 +115,6 @@ void run_whole_and_restarted(const fs::path& dir, const std::string& scene, long
 }
 
 /// The series `name` of two run files agrees bit for bit.
-void expect_series_identical(const std::string& a, const std::string& b, const std::string& name) {
-  const auto sa = mpm::read_series(a, name), sb = mpm::read_series(b, name);
-  ASSERT_EQ(sa.size(), sb.size()) << name;
-  EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(double)), 0) << name;
-}
-
 /// Runs the disk bounce to 4 ms whole and in two parts (stopped at step 517, restarted from the
 /// checkpoint) and checks that the last frames and the series agree bit for bit.
 void expect_restart_bit_identical(const std::string& name, bool apic) {

@@ -10,22 +10,18 @@
 #include <string>
 
 #include "../support/read_text.hpp"
+#include "../support/run_file_checks.hpp"
 #include "fragmpm/mpm/run_file.hpp"
 #include "fragmpm/pipeline/scene.hpp"
 #include "fragmpm/pipeline/stored_run.hpp"
 
 namespace fs = std::filesystem;
 using namespace fragmpm;
+using fragmpm::test_support::expect_series_identical;
+using fragmpm::test_support::fresh_directory;
 using fragmpm::test_support::read_text;
 
 namespace {
-
-fs::path fresh_directory(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("fragmpm_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 /// The pulled phase-field bar at h = 0.5 mm to `end` (it cracks by 12 µs).
 std::string bar_scene(const std::string& end) {
@@ -39,12 +35,6 @@ std::string bar_scene(const std::string& end) {
 
 mpm::Solver<2> bar_solver(const std::string& text) {
   return mpm::Solver<2>(pipeline::parse_scene(text, "phase-field-bar.toml"));
-}
-
-void expect_series_identical(const std::string& a, const std::string& b, const std::string& name) {
-  const auto sa = mpm::read_series(a, name), sb = mpm::read_series(b, name);
-  ASSERT_EQ(sa.size(), sb.size()) << name;
-  EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(double)), 0) << name;
 }
 
 }  // namespace
