@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -451,6 +452,37 @@ TEST(PhaseField, DirectRunsDoubleWhileTheAttemptsFail) {
   next.direct_run = 0;
   mpm::begin_direct_run(next);
   EXPECT_EQ(next.direct_solves_left, mpm::first_direct_run - 1);
+}
+
+TEST(PhaseField, ADirectSolveIsNotExtrapolatedFrom) {
+  // The solve starts from 2 c − c_previous where both earlier solves had the unknown, but not
+  // after a direct solve: its change from the last solution holds what the factorisation did in
+  // the directions no particle sees, which the extrapolation would repeat at every later step
+  // (step/phase_field_stage.cpp; on the colliding rings it tripled the solves that stopped at
+  // the iteration limit). An iterative step keeps the last solution as `previous`, a direct one
+  // keeps none, and the conjugate gradients that follow start from the direct solution and
+  // converge without another factorisation.
+  mpm::Solver<2> solver(cracked_strip());
+  ASSERT_FALSE(solver.step());
+  const auto finite = [](const std::vector<double>& values) {
+    return std::count_if(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+  };
+  mpm::PhaseFieldWarmStart<2> start = solver.phase_field_warm_start();
+  ASSERT_EQ(start.previous.size(), start.solution.size());
+  EXPECT_EQ(finite(start.previous), static_cast<std::ptrdiff_t>(start.solution.size()));
+  start.direct_solves_left = 1;
+  solver.restore(solver.time(), solver.step_count(), solver.accumulators(), solver.particles(),
+                 start);
+  const mpm::PhaseFieldWork before = solver.phase_field_work();
+  ASSERT_FALSE(solver.step());
+  EXPECT_EQ(solver.phase_field_work().direct_runs - before.direct_runs, 1);
+  const mpm::PhaseFieldWarmStart<2>& after_direct = solver.phase_field_warm_start();
+  ASSERT_EQ(after_direct.previous.size(), after_direct.solution.size());
+  EXPECT_EQ(finite(after_direct.previous), 0);
+  ASSERT_FALSE(solver.step());
+  EXPECT_EQ(solver.phase_field_work().direct_runs - before.direct_runs, 1);
+  EXPECT_EQ(finite(solver.phase_field_warm_start().previous),
+            static_cast<std::ptrdiff_t>(solver.phase_field_warm_start().solution.size()));
 }
 
 TEST(PhaseField, DirectSolvesEndAndConjugateGradientsResume) {
