@@ -497,6 +497,7 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
       g.remove("phase_field_previous");
     g.set_attribute("phase_field_direct_solves_left", std::int64_t{pf.direct_solves_left});
     g.set_attribute("phase_field_direct_run", std::int64_t{pf.direct_run});
+    g.set_attribute("phase_field_multigrid", std::int64_t{pf.multigrid});
   } else {
     for (const char* name :
          {"phase_field_node", "phase_field_field", "phase_field_solution", "phase_field_previous"})
@@ -581,6 +582,10 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
       // Checkpoints from when a direct solve stayed direct for good: a first run of them.
       pf.direct_solves_left = pf.direct_run = first_direct_run;
     }
+    // Checkpoints from before the multigrid preconditioner: the next solves use the crack block
+    // until one needs more than multigrid_switch_iterations.
+    if (g.has_attribute("phase_field_multigrid"))
+      pf.multigrid = static_cast<std::int32_t>(g.attribute_int64("phase_field_multigrid"));
   }
   return c;
 }

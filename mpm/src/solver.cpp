@@ -166,6 +166,8 @@ struct Solver<D>::Impl {
     ++phase_field_work.runs;
     phase_field_work.iterations += state.phase_field->iterations;
     phase_field_work.direct_runs += state.phase_field->direct ? 1 : 0;
+    phase_field_work.multigrid_solves +=
+        state.phase_field->multigrid && !state.phase_field->direct ? 1 : 0;
     phase_field_work.stopped_at_limit += state.phase_field->stopped_at_limit ? 1 : 0;
     phase_field_work.past_limit += state.phase_field->went_past_limit ? 1 : 0;
     if (state.phase_field->stopped_at_limit || state.phase_field->went_past_limit)

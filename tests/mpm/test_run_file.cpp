@@ -195,6 +195,7 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   c.phase_field.solution = {1.0 / 3.0, -1e-300};
   c.phase_field.direct_solves_left = 17;
   c.phase_field.direct_run = 128;
+  c.phase_field.multigrid = 1;
   run.write_checkpoint(c);
   // A second checkpoint of the same size is written in place: the file does not grow.
   c.particles.x[0](0) += 1.0;
@@ -236,6 +237,7 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   EXPECT_TRUE(same_bits(r->phase_field.solution, c.phase_field.solution));
   EXPECT_EQ(r->phase_field.direct_solves_left, 17);
   EXPECT_EQ(r->phase_field.direct_run, 128);
+  EXPECT_EQ(r->phase_field.multigrid, 1);
 
   // The checkpoint survives closing and reopening the file.
   run = RunFile<2>::open_existing(path);

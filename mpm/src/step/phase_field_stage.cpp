@@ -417,21 +417,44 @@ void solve_phase_field(StepState<D>& state) {
     }
     return false;
   };
-  bool preconditioned = false;  // the crack block is factorised once a step, when first needed
-  const auto iterate = [&](int limit) {
-    pf.solver.setTolerance(phase_field_tolerance);
-    pf.solver.setMaxIterations(limit);
-    if (!preconditioned) pf.solver.compute(matrix);
+  // The preconditioner (the crack block, or multigrid once a crack-block solve needed more than
+  // multigrid_switch_iterations) is built once a step, when first needed.
+  PhaseFieldWarmStart<D>& next = pf.last;
+  pf.multigrid = next.multigrid != 0;
+  bool preconditioned = false;
+  const auto run = [&](auto& solver, int limit) {
+    solver.setTolerance(phase_field_tolerance);
+    solver.setMaxIterations(limit);
+    if (!preconditioned) solver.compute(matrix);
     preconditioned = true;
-    pf.solution = pf.solver.solveWithGuess(pf.rhs, pf.guess);
-    pf.iterations += static_cast<int>(pf.solver.iterations());
-    pf.residual = pf.solver.error();
-    return pf.solver.info() == Eigen::Success;
+    pf.solution = solver.solveWithGuess(pf.rhs, pf.guess);
+    pf.iterations += static_cast<int>(solver.iterations());
+    pf.residual = solver.error();
+    return solver.info() == Eigen::Success;
+  };
+  const auto iterate = [&](int limit) {
+    if (!pf.multigrid) return run(pf.solver, limit);
+    AggregationMultigrid& multigrid = pf.multigrid_solver.preconditioner();
+    if (!preconditioned) {
+      size_array(multigrid.coordinates, m);
+      size_array(multigrid.fields, m);
+      for (std::size_t r = 0; r < m; ++r) {
+        const IVec<D> node = grid.global(pf.unknown_node[r]);
+        std::array<std::int64_t, 3> coordinates{0, 0, 0};
+        for (int k = 0; k < D; ++k) coordinates[static_cast<std::size_t>(k)] = node[k];
+        multigrid.coordinates[r] = coordinates;
+        multigrid.fields[r] = pf.unknown_body[r];
+      }
+    }
+    return run(pf.multigrid_solver, limit);
+  };
+  const auto preconditioner_multiply_adds = [&] {
+    return pf.multigrid ? pf.multigrid_solver.preconditioner().multiply_adds()
+                        : 2.0 * pf.solver.preconditioner().factor_nonzeros();
   };
   pf.iterations = 0;
   pf.stopped_at_limit = false;
   pf.went_past_limit = false;
-  PhaseFieldWarmStart<D>& next = pf.last;
   if (next.direct_solves_left > 0) {
     --next.direct_solves_left;
     pf.direct = solve_directly();
@@ -447,7 +470,7 @@ void solve_phase_field(StepState<D>& state) {
         pf.values.data()));
     pf.factorisation_iterations = factorisation_cost_in_iterations(
         pf.direct_solver.squared_column_counts(), static_cast<double>(nonzeros),
-        static_cast<double>(unknowns), pf.solver.preconditioner().factor_nonzeros());
+        static_cast<double>(unknowns), preconditioner_multiply_adds());
     const int budget = static_cast<int>(
         std::min(pf.factorisation_iterations, 2.0 * static_cast<double>(unknowns)));
     if (pf.weigh_factorisation && budget > pf.iterations) {
@@ -468,6 +491,10 @@ void solve_phase_field(StepState<D>& state) {
       }
     }
   }
+  // A crack-block solve that needed this many iterations says the system has outgrown it: the
+  // fourth-order term's h⁻⁴ or open cracks (aggregation_multigrid.hpp). The history only grows, so
+  // the run keeps multigrid from here on; the warm start carries the choice through checkpoints.
+  if (!pf.multigrid && pf.iterations > multigrid_switch_iterations) next.multigrid = 1;
   pf.last.node.resize(m);
   pf.last.field.resize(m);
   pf.last.solution.resize(m);

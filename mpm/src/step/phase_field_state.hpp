@@ -12,6 +12,7 @@
 
 #include "fragmpm/mpm/phase_field_warm_start.hpp"
 #include "fragmpm/mpm/problem.hpp"
+#include "fragmpm/mpm/aggregation_multigrid.hpp"
 #include "step/counted_ldlt.hpp"
 #include "step/crack_block_preconditioner.hpp"
 
@@ -103,6 +104,9 @@ struct PhaseFieldState {
   std::vector<double> shifted_values;  ///< values with the direct solve's diagonal shift
   Eigen::VectorXd rhs, guess, solution;
   Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, CrackBlockPreconditioner> solver;
+  /// The same with one multigrid V-cycle as the preconditioner (PhaseFieldWarmStart::multigrid).
+  Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, AggregationMultigrid>
+      multigrid_solver;
   /// The direct solve: K is symmetric, so its compressed rows are also its compressed columns.
   using ColumnMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   CountedLdlt<ColumnMatrix> direct_solver;
@@ -122,6 +126,7 @@ struct PhaseFieldState {
   bool weigh_factorisation = true;  ///< go on past the limit while a factorisation costs more
   bool went_past_limit = false;     ///< the last solve went past it and converged iteratively
   bool direct = false;              ///< the last solve factorised K (sparse LDLᵀ)
+  bool multigrid = false;           ///< its conjugate gradients were preconditioned by multigrid
   bool stopped_at_limit = false;    ///< its conjugate gradients stopped at the iteration limit
   int iterations = 0;               ///< of the last solve
   /// Per particle, g(d) before the last solve less g(d) after it (0 for other materials): the

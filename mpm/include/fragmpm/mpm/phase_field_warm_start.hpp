@@ -26,10 +26,22 @@ inline constexpr int phase_field_iteration_limit = 300;
 /// (259 369 unknowns, nnz(K) = 6.45 × 10⁶, Σ c_j² = 1.77 × 10¹⁰) this gives 1 107; timed on one
 /// thread, the factorisation (7.7 s) took as long as about 1 390 Jacobi iterations, so the count
 /// errs towards factorising early.
+/// With the multigrid preconditioner (step/aggregation_multigrid.hpp) an iteration applies a
+/// V-cycle instead of the block's substitutions: `preconditioner_multiply_adds` is what one
+/// application costs (2 nnz(L_C) for the crack block).
 inline double factorisation_cost_in_iterations(double squared_column_counts, double nonzeros,
-                                               double unknowns, double block_factor_nonzeros) {
-  return 0.5 * squared_column_counts / (nonzeros + 6.0 * unknowns + 2.0 * block_factor_nonzeros);
+                                               double unknowns,
+                                               double preconditioner_multiply_adds) {
+  return 0.5 * squared_column_counts / (nonzeros + 6.0 * unknowns + preconditioner_multiply_adds);
 }
+
+/// Iterations of a solve preconditioned by the crack block above which the next solves are
+/// preconditioned by multigrid instead (step/aggregation_multigrid.hpp). On the cubic plate's
+/// system at h = 0.125 mm after it branched (259 369 unknowns, one thread) a multigrid solve cost
+/// about as much as 130 crack-block iterations (0.59 s to build the levels, 30 V-cycles of
+/// 43 ms, against 408 iterations of 14 ms); the switch is made a little below that, since a
+/// system that needed this many only gets harder as the history grows.
+inline constexpr int multigrid_switch_iterations = 100;
 
 /// Direct solves from a conjugate-gradient solve that stops at its iteration limit (that step's
 /// own included) to the next attempt: the first time, and at most, doubling while the attempts
@@ -60,6 +72,9 @@ struct PhaseFieldWarmStart {
   /// converged within its iteration limit).
   std::int32_t direct_solves_left = 0;
   std::int32_t direct_run = 0;
+  /// Whether the next solves are preconditioned by multigrid: set once a crack-block solve took
+  /// more than `multigrid_switch_iterations`, and kept.
+  std::int32_t multigrid = 0;
 
   bool empty() const { return solution.empty(); }
 };

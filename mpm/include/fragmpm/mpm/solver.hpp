@@ -48,6 +48,8 @@ struct PhaseFieldWork {
   long long runs = 0;         ///< one a step, and one at the start when the scene sets a history
   long long iterations = 0;   ///< conjugate-gradient iterations over all solves
   long long direct_runs = 0;  ///< solves by sparse LDLᵀ instead of conjugate gradients
+  /// conjugate-gradient solves preconditioned by multigrid (the rest: by the crack block)
+  long long multigrid_solves = 0;
   long long reused_orderings = 0;  ///< direct solves that kept the last step's ordering
   /// conjugate-gradient solves stopped at the iteration limit and finished directly (each starts
   /// a run of direct solves, phase_field_warm_start.hpp)
