@@ -638,3 +638,102 @@ TEST(PhaseField, SolveStoppedAtTheLimitIsFinishedDirectly) {
   EXPECT_EQ(work.iterations - before.iterations, 4);
   EXPECT_EQ(limited.phase_field_warm_start().direct_solves_left, 0);
 }
+
+namespace {
+
+/// The anisotropic strip of [KT19] §5.1 (ii)'s cubic γ = (1, 1, 0, 74), axes at 30°, h = l₀/4,
+/// 20 mm wide and 10 mm high (enough unknowns for multigrid to have a level below the system),
+/// with an imposed crack: the particle column on x = 0 carries H = 10⁴ G_c/(4 l₀).
+mpm::Problem<2> anisotropic_cracked_strip() {
+  auto problem = pipeline::parse_scene(
+      pipeline::phase_field_strip_scene(0.25e-3, "bspline2", 80, 10e-3,
+                                        "anisotropy = { gamma_1111 = 1, gamma_2222 = 1, "
+                                        "gamma_1122 = 0, gamma_1212 = 74, orientation = \"30 deg\" }"),
+      "strip.toml");
+  auto& P = problem.particles;
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (std::abs(P.x[p][0]) < 0.03e-3) P.damage_history[p] = 1e4 * Gc / (4 * l0);
+  return problem;
+}
+
+/// One step of `solver` restarted from its state with d = 0 on the particles and no warm start (so
+/// the solve starts from c = 1, far from the crack) and the given preconditioner, on `threads`
+/// threads: the particles and the step's work.
+std::pair<mpm::Particles<2>, mpm::PhaseFieldWork> step_without_warm_start(mpm::Solver<2>& solver,
+                                                                          bool multigrid,
+                                                                          int threads) {
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  mpm::PhaseFieldWarmStart<2> start;
+  start.multigrid = multigrid ? 1 : 0;
+  mpm::Particles<2> uncracked = solver.particles();
+  std::fill(uncracked.damage.begin(), uncracked.damage.end(), 0.0);
+  solver.restore(solver.time(), solver.step_count(), solver.accumulators(), uncracked, start);
+  const mpm::PhaseFieldWork before = solver.phase_field_work();
+  EXPECT_FALSE(solver.step());
+  omp_set_num_threads(saved);
+  mpm::PhaseFieldWork work = solver.phase_field_work();
+  work.runs -= before.runs;
+  work.iterations -= before.iterations;
+  work.direct_runs -= before.direct_runs;
+  work.multigrid_solves -= before.multigrid_solves;
+  return {solver.particles(), work};
+}
+
+}  // namespace
+
+TEST(PhaseField, HardSolveSwitchesToMultigrid) {
+  // The fourth-order term at h = l₀/4 is about 74 (l₀/h)⁴ ≈ 1.9 × 10⁴ times the local term on the
+  // scale of a cell, so Jacobi's smooth modes are that much softer than its rough ones
+  // (fragmpm/mpm/aggregation_multigrid.hpp): the constructor's solve with the crack block reaches
+  // the iteration limit, and the run switches to multigrid for good. From the same start (c = 1)
+  // and without the limit, the crack block then needs measured 2 789 iterations, multigrid 109.
+  mpm::Solver<2> solver(anisotropic_cracked_strip());
+  const mpm::PhaseFieldWork first = solver.phase_field_work();
+  ASSERT_EQ(first.runs, 1);
+  EXPECT_GT(first.iterations, mpm::multigrid_switch_iterations);
+  EXPECT_EQ(first.multigrid_solves, 0);
+  EXPECT_EQ(solver.phase_field_warm_start().multigrid, 1);
+  mpm::Solver<2> block_solver(anisotropic_cracked_strip());
+  solver.set_phase_field_iteration_limit(1000000, false);
+  block_solver.set_phase_field_iteration_limit(1000000, false);
+  const auto [multigrid, multigrid_work] = step_without_warm_start(solver, true, 2);
+  const auto [block, block_work] = step_without_warm_start(block_solver, false, 2);
+  EXPECT_EQ(multigrid_work.multigrid_solves, 1);
+  EXPECT_EQ(block_work.multigrid_solves, 0);
+  EXPECT_EQ(multigrid_work.direct_runs + block_work.direct_runs, 0);
+  EXPECT_LT(10 * multigrid_work.iterations, block_work.iterations);
+  EXPECT_EQ(solver.phase_field_warm_start().multigrid, 1);
+  // A crack-block solve needing this many switches the block's run as well.
+  EXPECT_EQ(block_solver.phase_field_warm_start().multigrid, 1);
+}
+
+TEST(PhaseField, MultigridAgreesWithTheDirectSolve) {
+  // Both solve K c = f of the anisotropic strip, the multigrid-preconditioned conjugate gradients
+  // to the relative residual 10⁻⁶, the direct solve to rounding: the particles' d agree to the
+  // tolerance's order, the crack included. The multigrid solve gives the same bits on one and two
+  // threads (its matrix products split rows among threads, never sums).
+  mpm::Solver<2> a(anisotropic_cracked_strip()), b(anisotropic_cracked_strip()),
+      c(anisotropic_cracked_strip());
+  const auto [one, one_work] = step_without_warm_start(a, true, 1);
+  const auto [two, two_work] = step_without_warm_start(b, true, 2);
+  mpm::PhaseFieldWarmStart<2> direct;
+  direct.direct_solves_left = 1;
+  mpm::Particles<2> uncracked = c.particles();
+  std::fill(uncracked.damage.begin(), uncracked.damage.end(), 0.0);
+  c.restore(c.time(), c.step_count(), c.accumulators(), uncracked, direct);
+  ASSERT_FALSE(c.step());
+  const mpm::Particles<2>& exact = c.particles();
+  EXPECT_GT(one_work.iterations, 0);
+  EXPECT_EQ(one_work.multigrid_solves, 1);
+  EXPECT_EQ(one_work.iterations, two_work.iterations);
+  double largest = 0.0, worst = 0.0;
+  for (std::size_t p = 0; p < exact.size(); ++p) {
+    largest = std::max(largest, exact.damage[p]);
+    worst = std::max(worst, std::abs(exact.damage[p] - one.damage[p]));
+    ASSERT_EQ(one.damage[p], two.damage[p]) << p;
+  }
+  EXPECT_GT(largest, 0.9);
+  EXPECT_LT(worst, 1e-5);
+}
+

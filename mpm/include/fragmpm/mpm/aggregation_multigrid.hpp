@@ -1,29 +1,34 @@
 #pragma once
 // The preconditioner of the phase-field system's conjugate gradients once the system is stiff: one
-// V-cycle of smoothed-aggregation multigrid whose aggregates are blocks of 2^D grid nodes.
+// V-cycle of smoothed-aggregation multigrid whose aggregates are blocks of 3^D grid nodes.
 //
 // Why. With Jacobi the iterations grow with the condition number of D⁻¹K, and two things make it
 // large. The fourth-order anisotropic term G_c l₀³ χᵀΓχ ([KT19] eq. (4), (57)) scales as h⁻⁴
-// against the local term's 1, so its smooth modes are (l₀/h)⁴ γ times softer than its rough ones:
-// the orthotropic plate at h = 0.125 mm needs 400-800 Jacobi iterations before any crack. An open
-// crack's history H (10⁴-10⁸ G_c/(4 l₀)) adds rank-one terms that diagonal scaling cannot
-// separate (crack_block_preconditioner.hpp). Both leave the error that Jacobi cannot reduce smooth
-// on the scale of a few cells, which is what a coarse grid represents: on the cubic plate's system
-// after it branched (259 369 unknowns, 6.45 × 10⁶ entries) the crack block with Jacobi needs 546
-// iterations from the extrapolated start, this preconditioner 15.
+// against the local term's 1, so its smooth modes are about γ (l₀/h)⁴ times softer than its rough
+// ones: the orthotropic plate at h = 0.125 mm needs 400-800 Jacobi iterations before any crack.
+// An open crack's history H (10⁴-10⁸ G_c/(4 l₀)) adds rank-one terms that diagonal scaling
+// cannot separate (step/crack_block_preconditioner.hpp). In both, what Jacobi leaves is smooth on
+// the scale of a few cells, which a coarser grid represents: on the cubic plate's system after it
+// branched (259 369 unknowns, 6.45 × 10⁶ entries) the crack block with Jacobi needs 546
+// iterations from the extrapolated start, this preconditioner 43.
 //
 // How. Level l + 1 has one unknown per aggregate of level l: the unknowns of one field whose node
-// coordinates agree after halving. The tentative prolongator T (1 from each unknown to its
-// aggregate, the constants, the near null space of the Laplacian and bilaplacian terms) is smoothed
-// once by damped Jacobi, P = (I − ω D⁻¹A) T with ω = 4/(3 λ_max(D⁻¹A)), so that its columns
-// overlap and the coarse correction is accurate for smooth errors, not only constant ones on each
-// aggregate; the coarse matrix is the Galerkin product A_c = Pᵀ A P, symmetric positive
-// (semi-)definite as A. The smoother is Chebyshev-accelerated Jacobi on [λ_max/30, 1.1 λ_max]
-// (a polynomial in D⁻¹A, the same before and after the coarse correction, so the V-cycle is a
-// symmetric operator as conjugate gradients need, and it runs on the matrix products that Eigen
-// spreads over threads). The coarsest level (at most `multigrid_coarsest_unknowns`) is factorised.
-// The hierarchy is built from each step's system afresh, so a restarted run repeats the
-// uninterrupted one bit for bit.
+// coordinates agree after division by `multigrid_aggregate_width`. The tentative prolongator T
+// (1 from each unknown to its aggregate: the constants, near the null space of the Laplacian and
+// bilaplacian terms) is smoothed once by damped Jacobi, P = (I − ω D⁻¹A) T with
+// ω = 4/(3 λ_max(D⁻¹A)), so that neighbouring columns overlap and the coarse correction follows
+// smooth errors rather than steps from aggregate to aggregate; the coarse matrix is the Galerkin
+// product A_c = Pᵀ A P, symmetric positive (semi-)definite as A. The smoother is Chebyshev-
+// accelerated Jacobi on [λ_max/30, λ_max]: a polynomial in D⁻¹A, the same before and after the
+// coarse correction, so the V-cycle is a symmetric operator as conjugate gradients need, and it
+// runs on matrix products, which Eigen spreads over threads by rows. The coarsest level (at most
+// `multigrid_coarsest_unknowns`) is factorised. The hierarchy is built from each step's system
+// afresh, so a restarted run repeats the uninterrupted one bit for bit.
+//
+// Limits. Constants are the only coarse modes, and the bilaplacian also keeps linear functions
+// near its null space: where the fourth-order term dominates, the V-cycles grow with refinement,
+// about 2× per halving of h at fixed l₀ (Jacobi: 4×; tests/mpm/test_aggregation_multigrid.cpp).
+// Adding the linear modes to T (three coarse unknowns per aggregate in 2D) would remove that.
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <array>
@@ -32,6 +37,13 @@
 
 namespace fragmpm::mpm {
 
+/// Nodes per direction of an aggregate.
+/// 3 rather than the usual 2: on the cubic plate's branched system (one thread) width 2 took 15-18
+/// V-cycles but 1.5-1.7 s to build its five levels (operator complexity 2.0: the smoothed
+/// prolongator widens the B-spline's 5-node stencil, and each level's stencil grows); width 3
+/// took 35-43 V-cycles of about half the cost after 0.5 s to build four (complexity 1.12), 1.9-2.3 s
+/// a solve against 2.5-3.1 s.
+inline constexpr int multigrid_aggregate_width = 3;
 /// Unknowns at or below which a level is factorised instead of coarsened further.
 inline constexpr int multigrid_coarsest_unknowns = 2000;
 /// Degree of the Chebyshev smoother before and after each coarse correction. On the cubic plate's
@@ -40,8 +52,8 @@ inline constexpr int multigrid_coarsest_unknowns = 2000;
 inline constexpr int multigrid_smoothing_degree = 1;
 /// λ_max / λ_min of the part of the spectrum the smoother damps ([λ_max/30, λ_max]).
 inline constexpr double multigrid_smoothing_range = 30.0;
-/// Power iterations that estimate λ_max(D⁻¹A) on each level.
-inline constexpr int multigrid_power_iterations = 10;
+/// Lanczos steps that estimate λ_max(D⁻¹A) on each level (aggregation_multigrid.cpp).
+inline constexpr int multigrid_lanczos_steps = 20;
 
 class AggregationMultigrid {
  public:
@@ -94,7 +106,7 @@ class AggregationMultigrid {
     RowMatrix matrix;  ///< the Galerkin product (empty on the finest level, which is the system)
     RowMatrix prolongation, restriction;  ///< to and from the next level
     Eigen::VectorXd inverse_diagonal;
-    double largest_eigenvalue = 1.0;  ///< of D⁻¹A
+    double largest_eigenvalue = 1.0;  ///< λ_max(D⁻¹A), estimated from above
     std::vector<std::array<std::int64_t, 3>> coordinates;
     std::vector<std::int32_t> fields;
     mutable Eigen::VectorXd solution, rhs, residual, direction;
