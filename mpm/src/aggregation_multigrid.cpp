@@ -1,7 +1,6 @@
 #include "fragmpm/mpm/aggregation_multigrid.hpp"
 
 #include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -76,8 +75,8 @@ double largest_eigenvalue(const Matrix& A, const Eigen::VectorXd& inverse_diagon
 }  // namespace
 
 AggregationMultigrid::RowMap AggregationMultigrid::matrix(std::size_t level) const {
-  if (level == 0) return RowMap(fine_rows_, fine_rows_, fine_nonzeros_, fine_outer_, fine_inner_,
-                                fine_values_);
+  if (level == 0)
+    return RowMap(fine_rows_, fine_rows_, fine_nonzeros_, fine_outer_, fine_inner_, fine_values_);
   const RowMatrix& A = levels_[level].matrix;
   return RowMap(A.rows(), A.cols(), A.nonZeros(), A.outerIndexPtr(), A.innerIndexPtr(),
                 A.valuePtr());
@@ -113,8 +112,9 @@ void AggregationMultigrid::build(Eigen::Index rows, Eigen::Index nonzeros, const
       level.direction.setZero(n);
     }
 
-    // Aggregates: the unknowns of one field whose coordinates agree after division by the width, numbered in
-    // the order of their keys (so the coarse unknowns, like the fine ones, run in node order).
+    // Aggregates: the unknowns of one field whose coordinates agree after division by the width,
+    // numbered in the order of their keys (so the coarse unknowns, like the fine ones, run in node
+    // order).
     const std::vector<std::array<std::int64_t, 3>>& fine_coordinates = levels_[l].coordinates;
     const std::vector<std::int32_t>& fine_fields = levels_[l].fields;
     using Key = std::tuple<std::int32_t, std::int64_t, std::int64_t, std::int64_t>;
@@ -153,7 +153,8 @@ void AggregationMultigrid::build(Eigen::Index rows, Eigen::Index nonzeros, const
     level.largest_eigenvalue = largest_eigenvalue(A, level.inverse_diagonal);
     RowMatrix tentative(n, coarse);
     tentative.reserve(Eigen::VectorXi::Ones(n));
-    for (Eigen::Index i = 0; i < n; ++i) tentative.insert(i, aggregate[static_cast<std::size_t>(i)]) = 1.0;
+    for (Eigen::Index i = 0; i < n; ++i)
+      tentative.insert(i, aggregate[static_cast<std::size_t>(i)]) = 1.0;
     tentative.makeCompressed();
     RowMatrix smoothing = A * tentative;
     const double damping = 4.0 / (3.0 * level.largest_eigenvalue);
@@ -197,7 +198,8 @@ void AggregationMultigrid::smooth(std::size_t l, bool from_zero) const {
     if (k == multigrid_smoothing_degree) break;
     r.noalias() -= A * d;
     const double rho_next = 1.0 / (2.0 * sigma - rho);
-    d = (rho_next * rho) * d + (2.0 * rho_next / half_width) * level.inverse_diagonal.cwiseProduct(r);
+    d = (rho_next * rho) * d +
+        (2.0 * rho_next / half_width) * level.inverse_diagonal.cwiseProduct(r);
     rho = rho_next;
   }
 }

@@ -645,11 +645,12 @@ namespace {
 /// 20 mm wide and 10 mm high (enough unknowns for multigrid to have a level below the system),
 /// with an imposed crack: the particle column on x = 0 carries H = 10⁴ G_c/(4 l₀).
 mpm::Problem<2> anisotropic_cracked_strip() {
-  auto problem = pipeline::parse_scene(
-      pipeline::phase_field_strip_scene(0.25e-3, "bspline2", 80, 10e-3,
-                                        "anisotropy = { gamma_1111 = 1, gamma_2222 = 1, "
-                                        "gamma_1122 = 0, gamma_1212 = 74, orientation = \"30 deg\" }"),
-      "strip.toml");
+  auto problem =
+      pipeline::parse_scene(pipeline::phase_field_strip_scene(
+                                0.25e-3, "bspline2", 80, 10e-3,
+                                "anisotropy = { gamma_1111 = 1, gamma_2222 = 1, "
+                                "gamma_1122 = 0, gamma_1212 = 74, orientation = \"30 deg\" }"),
+                            "strip.toml");
   auto& P = problem.particles;
   for (std::size_t p = 0; p < P.size(); ++p)
     if (std::abs(P.x[p][0]) < 0.03e-3) P.damage_history[p] = 1e4 * Gc / (4 * l0);
@@ -736,4 +737,3 @@ TEST(PhaseField, MultigridAgreesWithTheDirectSolve) {
   EXPECT_GT(largest, 0.9);
   EXPECT_LT(worst, 1e-5);
 }
-

@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "fragmpm/mpm/aggregation_multigrid.hpp"
 #include "fragmpm/mpm/phase_field_warm_start.hpp"
 #include "fragmpm/mpm/problem.hpp"
-#include "fragmpm/mpm/aggregation_multigrid.hpp"
 #include "step/counted_ldlt.hpp"
 #include "step/crack_block_preconditioner.hpp"
 

@@ -125,8 +125,7 @@ int execute(const RunArguments& args) {
                    work.runs, work.direct_runs, work.reused_orderings, work.stopped_at_limit,
                    mpm::phase_field_iteration_limit, work.past_limit,
                    mpm::phase_field_iteration_limit, work.factorisation_iterations,
-                   work.multigrid_solves,
-                   double(work.iterations) / double(work.runs), work.seconds,
+                   work.multigrid_solves, double(work.iterations) / double(work.runs), work.seconds,
                    result.wall_seconds > 0 ? 100.0 * work.seconds / result.wall_seconds : 0.0);
     const mpm::LostParticles& lost = row.totals.lost;
     if (solver.problem().grid.outside == mpm::OutsidePolicy::remove)

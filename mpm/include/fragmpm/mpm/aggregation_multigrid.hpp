@@ -41,8 +41,8 @@ namespace fragmpm::mpm {
 /// 3 rather than the usual 2: on the cubic plate's branched system (one thread) width 2 took 15-18
 /// V-cycles but 1.5-1.7 s to build its five levels (operator complexity 2.0: the smoothed
 /// prolongator widens the B-spline's 5-node stencil, and each level's stencil grows); width 3
-/// took 35-43 V-cycles of about half the cost after 0.5 s to build four (complexity 1.12), 1.9-2.3 s
-/// a solve against 2.5-3.1 s.
+/// took 35-43 V-cycles of about half the cost after 0.5 s to build four (complexity 1.12), 1.9-2.3
+/// s a solve against 2.5-3.1 s.
 inline constexpr int multigrid_aggregate_width = 3;
 /// Unknowns at or below which a level is factorised instead of coarsened further.
 inline constexpr int multigrid_coarsest_unknowns = 2000;
