@@ -408,6 +408,11 @@ void Solver<D>::set_phase_field_iteration_limit(int limit, bool weigh_factorisat
 }
 
 template <int D>
+void Solver<D>::set_phase_field_preconditioner(PhaseFieldPreconditioner choice) {
+  if (impl_->state.phase_field) impl_->state.phase_field->preconditioner = choice;
+}
+
+template <int D>
 PhaseFieldWarmStart<D> Solver<D>::phase_field_warm_start() const {
   return impl_->state.phase_field ? impl_->state.phase_field->last : PhaseFieldWarmStart<D>{};
 }

@@ -420,7 +420,8 @@ void solve_phase_field(StepState<D>& state) {
   // The preconditioner (the crack block, or multigrid once a crack-block solve needed more than
   // multigrid_switch_iterations) is built once a step, when first needed.
   PhaseFieldWarmStart<D>& next = pf.last;
-  pf.multigrid = next.multigrid != 0;
+  pf.multigrid = pf.preconditioner == PhaseFieldPreconditioner::multigrid ||
+                 (pf.preconditioner == PhaseFieldPreconditioner::automatic && next.multigrid != 0);
   bool preconditioned = false;
   const auto run = [&](auto& solver, int limit) {
     solver.setTolerance(phase_field_tolerance);
@@ -494,7 +495,9 @@ void solve_phase_field(StepState<D>& state) {
   // A crack-block solve that needed this many iterations says the system has outgrown it: the
   // fourth-order term's h⁻⁴ or open cracks (aggregation_multigrid.hpp). The history only grows, so
   // the run keeps multigrid from here on; the warm start carries the choice through checkpoints.
-  if (!pf.multigrid && pf.iterations > multigrid_switch_iterations) next.multigrid = 1;
+  if (pf.preconditioner == PhaseFieldPreconditioner::automatic && !pf.multigrid &&
+      pf.iterations > multigrid_switch_iterations)
+    next.multigrid = 1;
   pf.last.node.resize(m);
   pf.last.field.resize(m);
   pf.last.solution.resize(m);

@@ -124,11 +124,12 @@ struct PhaseFieldState {
   /// Conjugate-gradient iterations after which a solve weighs going on against factorising.
   int iteration_limit = phase_field_iteration_limit;
   bool weigh_factorisation = true;  ///< go on past the limit while a factorisation costs more
-  bool went_past_limit = false;     ///< the last solve went past it and converged iteratively
-  bool direct = false;              ///< the last solve factorised K (sparse LDLᵀ)
-  bool multigrid = false;           ///< its conjugate gradients were preconditioned by multigrid
-  bool stopped_at_limit = false;    ///< its conjugate gradients stopped at the iteration limit
-  int iterations = 0;               ///< of the last solve
+  PhaseFieldPreconditioner preconditioner = PhaseFieldPreconditioner::automatic;
+  bool went_past_limit = false;   ///< the last solve went past it and converged iteratively
+  bool direct = false;            ///< the last solve factorised K (sparse LDLᵀ)
+  bool multigrid = false;         ///< its conjugate gradients were preconditioned by multigrid
+  bool stopped_at_limit = false;  ///< its conjugate gradients stopped at the iteration limit
+  int iterations = 0;             ///< of the last solve
   /// Per particle, g(d) before the last solve less g(d) after it (0 for other materials): the
   /// step's constitutive update books (g_old − g_new)(H − ψ⁺) as the history excess.
   std::vector<double> degradation_drop;

@@ -43,6 +43,11 @@ inline double factorisation_cost_in_iterations(double squared_column_counts, dou
 /// system that needed this many only gets harder as the history grows.
 inline constexpr int multigrid_switch_iterations = 100;
 
+/// Which preconditioner the phase-field conjugate gradients use: `automatic` (the crack block
+/// until a solve needs more than multigrid_switch_iterations, then multigrid), or either one
+/// throughout, as the bench and the tests compare them.
+enum class PhaseFieldPreconditioner { automatic, crack_block, multigrid };
+
 /// Direct solves from a conjugate-gradient solve that stops at its iteration limit (that step's
 /// own included) to the next attempt: the first time, and at most, doubling while the attempts
 /// keep failing. One is enough in the runs measured: the failures come singly, and the conjugate

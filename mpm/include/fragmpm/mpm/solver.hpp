@@ -91,6 +91,8 @@ class Solver {
   /// material), and whether they weigh at all: without, they stop at the limit and are finished
   /// directly. A lower limit exercises both paths on a small system, as the tests do.
   void set_phase_field_iteration_limit(int limit, bool weigh_factorisation = true);
+  /// The preconditioner of the next phase-field solves (default `automatic`).
+  void set_phase_field_preconditioner(PhaseFieldPreconditioner choice);
 
   /// The nodal phase field that starts the next solve (empty without a phase-field material or
   /// before the first solve), for a checkpoint.
