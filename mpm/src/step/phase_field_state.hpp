@@ -58,6 +58,9 @@ inline constexpr double phase_field_tolerance = 1e-6;
 /// factorisation pay there: on the same system (248 000 non-zeros) this LDLᵀ factorises in 34 ms,
 /// SuiteSparse's CHOLMOD (supernodal, OpenBLAS on 2 threads) in 35 ms with AMD and 27 ms with
 /// nested dissection, whose analysis (63 ms) only pays back while the pattern holds.
+/// Once a solve with the crack block needs more than `multigrid_switch_iterations`, the run's
+/// later solves are preconditioned by a multigrid V-cycle instead (fragmpm/mpm/
+/// aggregation_multigrid.hpp), which the fourth-order term and large cracked grids need.
 /// (The limits are in fragmpm/mpm/phase_field_warm_start.hpp.)
 /// Relative diagonal shift of the direct solve (phase_field_stage.cpp, step 5).
 inline constexpr double phase_field_pivot_shift = 1e-12;

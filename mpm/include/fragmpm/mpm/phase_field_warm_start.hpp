@@ -38,9 +38,11 @@ inline double factorisation_cost_in_iterations(double squared_column_counts, dou
 /// Iterations of a solve preconditioned by the crack block above which the next solves are
 /// preconditioned by multigrid instead (step/aggregation_multigrid.hpp). On the cubic plate's
 /// system at h = 0.125 mm after it branched (259 369 unknowns, one thread) a multigrid solve cost
-/// about as much as 130 crack-block iterations (0.59 s to build the levels, 30 V-cycles of
-/// 43 ms, against 408 iterations of 14 ms); the switch is made a little below that, since a
-/// system that needed this many only gets harder as the history grows.
+/// about as much as 135 crack-block iterations (0.5 s to build the levels and 35 V-cycles of
+/// about 40 ms, against iterations of about 14 ms; the crack block needed 408); on the bench's
+/// cubic block (25 000 unknowns) the two cost the same where the crack block needs 135. The
+/// switch is made a little below that, since a system that needed this many only gets harder as
+/// the history grows.
 inline constexpr int multigrid_switch_iterations = 100;
 
 /// Which preconditioner the phase-field conjugate gradients use: `automatic` (the crack block
