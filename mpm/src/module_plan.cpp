@@ -131,8 +131,9 @@ std::vector<ModuleDecision> plan_modules(const Problem<D>& problem) {
            ? "no phase-field material: no nodal phase-field solve"
            : "AT2 phase field ([KT19]) on " + phase_field_reason +
                  ": nodal system solved each step by conjugate gradients, preconditioned by an "
-                 "exact solve on the cracked particles' nodes, by a multigrid V-cycle once a "
-                 "solve needs more than 100 iterations (by sparse LDLT of the whole system "
+                 "exact solve on the cracked particles' nodes, by a multigrid V-cycle once its "
+                 "solves need more than 150 iterations on average (by sparse LDLT of the whole "
+                 "system "
                  "in a step where they pass 300 iterations and the cost of that "
                  "factorisation), one field per body; "
                  "Hencky elasticity with the spectral tension-compression split"});

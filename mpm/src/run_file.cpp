@@ -498,6 +498,7 @@ void RunFile<D>::write_checkpoint(const Checkpoint<D>& checkpoint) {
     g.set_attribute("phase_field_direct_solves_left", std::int64_t{pf.direct_solves_left});
     g.set_attribute("phase_field_direct_run", std::int64_t{pf.direct_run});
     g.set_attribute("phase_field_multigrid", std::int64_t{pf.multigrid});
+    g.set_attribute("phase_field_average_iterations", pf.average_iterations);
   } else {
     for (const char* name :
          {"phase_field_node", "phase_field_field", "phase_field_solution", "phase_field_previous"})
@@ -586,6 +587,8 @@ std::optional<Checkpoint<D>> RunFile<D>::read_checkpoint() const {
     // until one needs more than multigrid_switch_iterations.
     if (g.has_attribute("phase_field_multigrid"))
       pf.multigrid = static_cast<std::int32_t>(g.attribute_int64("phase_field_multigrid"));
+    if (g.has_attribute("phase_field_average_iterations"))
+      pf.average_iterations = g.attribute_double("phase_field_average_iterations");
   }
   return c;
 }

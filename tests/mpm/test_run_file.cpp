@@ -196,6 +196,7 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   c.phase_field.direct_solves_left = 17;
   c.phase_field.direct_run = 128;
   c.phase_field.multigrid = 1;
+  c.phase_field.average_iterations = 123.25;
   run.write_checkpoint(c);
   // A second checkpoint of the same size is written in place: the file does not grow.
   c.particles.x[0](0) += 1.0;
@@ -238,6 +239,7 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   EXPECT_EQ(r->phase_field.direct_solves_left, 17);
   EXPECT_EQ(r->phase_field.direct_run, 128);
   EXPECT_EQ(r->phase_field.multigrid, 1);
+  EXPECT_EQ(r->phase_field.average_iterations, 123.25);
 
   // The checkpoint survives closing and reopening the file.
   run = RunFile<2>::open_existing(path);

@@ -417,8 +417,8 @@ void solve_phase_field(StepState<D>& state) {
     }
     return false;
   };
-  // The preconditioner (the crack block, or multigrid once a crack-block solve needed more than
-  // multigrid_switch_iterations) is built once a step, when first needed.
+  // The preconditioner (the crack block, or multigrid once the crack-block solves needed more
+  // than multigrid_switch_iterations on average) is built once a step, when first needed.
   PhaseFieldWarmStart<D>& next = pf.last;
   pf.multigrid = pf.preconditioner == PhaseFieldPreconditioner::multigrid ||
                  (pf.preconditioner == PhaseFieldPreconditioner::automatic && next.multigrid != 0);
@@ -492,11 +492,13 @@ void solve_phase_field(StepState<D>& state) {
       }
     }
   }
-  // A crack-block solve that needed this many iterations says the system has outgrown it: the
-  // fourth-order term's h⁻⁴ or open cracks (aggregation_multigrid.hpp). The history only grows, so
-  // the run keeps multigrid from here on; the warm start carries the choice through checkpoints.
+  // Crack-block solves that need this many iterations on average say the system has outgrown the
+  // block: the fourth-order term's h⁻⁴ or open cracks across a large grid
+  // (aggregation_multigrid.hpp). The history only grows, so the run keeps multigrid from here on;
+  // the warm start carries the average and the choice through checkpoints.
   if (pf.preconditioner == PhaseFieldPreconditioner::automatic && !pf.multigrid &&
-      pf.iterations > multigrid_switch_iterations)
+      (pf.iterations > 0 || !pf.direct) &&
+      average_iterations_call_for_multigrid(next.average_iterations, pf.iterations))
     next.multigrid = 1;
   pf.last.node.resize(m);
   pf.last.field.resize(m);

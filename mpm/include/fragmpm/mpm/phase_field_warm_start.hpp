@@ -35,15 +35,27 @@ inline double factorisation_cost_in_iterations(double squared_column_counts, dou
   return 0.5 * squared_column_counts / (nonzeros + 6.0 * unknowns + preconditioner_multiply_adds);
 }
 
-/// Iterations of a solve preconditioned by the crack block above which the next solves are
-/// preconditioned by multigrid instead (step/aggregation_multigrid.hpp). On the cubic plate's
-/// system at h = 0.125 mm after it branched (259 369 unknowns, one thread) a multigrid solve cost
-/// about as much as 135 crack-block iterations (0.5 s to build the levels and 35 V-cycles of
-/// about 40 ms, against iterations of about 14 ms; the crack block needed 408); on the bench's
-/// cubic block (25 000 unknowns) the two cost the same where the crack block needs 135. The
-/// switch is made a little below that, since a system that needed this many only gets harder as
-/// the history grows.
-inline constexpr int multigrid_switch_iterations = 100;
+/// Average iterations of the crack-block solves above which the next solves are preconditioned by
+/// multigrid instead (step/aggregation_multigrid.hpp). A multigrid solve costs as much as many
+/// crack-block iterations: on the cubic plate's system at h = 0.125 mm after it branched (259 369
+/// unknowns, one thread) about 135 (0.5 s to build the levels and 35 V-cycles of about 40 ms,
+/// against iterations of about 14 ms; the crack block needed 408), and on the bench's cracked
+/// cubic block (25 000 unknowns) the two cost the same where the crack block needs about 135.
+/// What counts is the average, not one solve: in the colliding rings (10 000-12 000 unknowns) the
+/// crack block takes 15-25 iterations a solve, with rare solves that creep past 100 or stall;
+/// when the first solve past 100 switched the run for good, `verify two-rings --quick` at 10 m/s
+/// took 515 s instead of 220 s, with the same pieces and crack energies.
+inline constexpr int multigrid_switch_iterations = 150;
+/// Solves over which the average above is taken: each crack-block solve moves it by 1/this of the
+/// difference (an exponential average, so that it needs one number in a checkpoint).
+inline constexpr double multigrid_average_solves = 20.0;
+
+/// The average after a crack-block solve of `iterations`, and whether the next solves switch to
+/// multigrid.
+inline bool average_iterations_call_for_multigrid(double& average, int iterations) {
+  average += (static_cast<double>(iterations) - average) / multigrid_average_solves;
+  return average > static_cast<double>(multigrid_switch_iterations);
+}
 
 /// Which preconditioner the phase-field conjugate gradients use: `automatic` (the crack block
 /// until a solve needs more than multigrid_switch_iterations, then multigrid), or either one
@@ -79,9 +91,11 @@ struct PhaseFieldWarmStart {
   /// converged within its iteration limit).
   std::int32_t direct_solves_left = 0;
   std::int32_t direct_run = 0;
-  /// Whether the next solves are preconditioned by multigrid: set once a crack-block solve took
-  /// more than `multigrid_switch_iterations`, and kept.
+  /// Whether the next solves are preconditioned by multigrid: set once the crack-block solves'
+  /// average iterations pass `multigrid_switch_iterations`, and kept.
   std::int32_t multigrid = 0;
+  /// That average so far (average_iterations_call_for_multigrid).
+  double average_iterations = 0.0;
 
   bool empty() const { return solution.empty(); }
 };
