@@ -86,6 +86,13 @@ constexpr const char* three_open_cracks =
     "\n[[cracks]]\nfrom = [\"20 mm\", \"75 mm\"]\nto = [\"80 mm\", \"75 mm\"]\n";
 
 std::vector<DamageCase> damage_cases() {
+  const std::map<std::string, std::string> cubic_phase_field = {
+      {"damage", "\"phase-field\""},
+      {"length_scale", "\"1 mm\""},
+      {"fracture_energy", "\"1 J/m2\""},
+      {"anisotropy",
+       "{ gamma_1111 = 1, gamma_2222 = 1, gamma_1122 = 0, gamma_1212 = 74, orientation = "
+       "\"30 deg\" }"}};
   return {
       {"none", {{"damage", "\"none\""}}},
       {"rankine",
@@ -111,23 +118,9 @@ std::vector<DamageCase> damage_cases() {
       // The cracked block with the fourth-order term of [KT19] §5.1 (ii)'s cubic anisotropy
       // (γ = (1, 1, 0, 74), axes at 30°), its conjugate gradients preconditioned throughout by
       // the crack block and by multigrid (fragmpm/mpm/aggregation_multigrid.hpp).
-      {"pf cubic, block",
-       {{"damage", "\"phase-field\""},
-        {"length_scale", "\"1 mm\""},
-        {"fracture_energy", "\"1 J/m2\""},
-        {"anisotropy",
-         "{ gamma_1111 = 1, gamma_2222 = 1, gamma_1122 = 0, gamma_1212 = 74, orientation = "
-         "\"30 deg\" }"}},
-       three_open_cracks,
+      {"pf cubic, block", cubic_phase_field, three_open_cracks,
        mpm::PhaseFieldPreconditioner::crack_block},
-      {"pf cubic, multigrid",
-       {{"damage", "\"phase-field\""},
-        {"length_scale", "\"1 mm\""},
-        {"fracture_energy", "\"1 J/m2\""},
-        {"anisotropy",
-         "{ gamma_1111 = 1, gamma_2222 = 1, gamma_1122 = 0, gamma_1212 = 74, orientation = "
-         "\"30 deg\" }"}},
-       three_open_cracks,
+      {"pf cubic, multigrid", cubic_phase_field, three_open_cracks,
        mpm::PhaseFieldPreconditioner::multigrid},
   };
 }
