@@ -370,6 +370,18 @@ mpm::Problem<2> cracked_strip() {
   return problem;
 }
 
+/// One step of `solver` and the phase-field work it did: the particles and the step's counts.
+std::pair<mpm::Particles<2>, mpm::PhaseFieldWork> step_with_work(mpm::Solver<2>& solver) {
+  const mpm::PhaseFieldWork before = solver.phase_field_work();
+  EXPECT_FALSE(solver.step());
+  mpm::PhaseFieldWork work = solver.phase_field_work();
+  work.runs -= before.runs;
+  work.iterations -= before.iterations;
+  work.direct_runs -= before.direct_runs;
+  work.multigrid_solves -= before.multigrid_solves;
+  return {solver.particles(), work};
+}
+
 /// One step of the cracked strip from its constructor's state, solved directly or by conjugate
 /// gradients (with the crack block, step/crack_block_preconditioner.hpp).
 std::pair<mpm::Particles<2>, mpm::PhaseFieldWork> step_cracked_strip(bool direct) {
@@ -377,13 +389,7 @@ std::pair<mpm::Particles<2>, mpm::PhaseFieldWork> step_cracked_strip(bool direct
   mpm::PhaseFieldWarmStart<2> start;
   start.direct_solves_left = direct ? 1 : 0;
   solver.restore(0.0, 0, solver.accumulators(), solver.particles(), start);
-  const mpm::PhaseFieldWork before = solver.phase_field_work();
-  EXPECT_FALSE(solver.step());
-  mpm::PhaseFieldWork work = solver.phase_field_work();
-  work.runs -= before.runs;
-  work.iterations -= before.iterations;
-  work.direct_runs -= before.direct_runs;
-  return {solver.particles(), work};
+  return step_with_work(solver);
 }
 
 }  // namespace
@@ -670,15 +676,9 @@ std::pair<mpm::Particles<2>, mpm::PhaseFieldWork> step_without_warm_start(mpm::S
   mpm::Particles<2> uncracked = solver.particles();
   std::fill(uncracked.damage.begin(), uncracked.damage.end(), 0.0);
   solver.restore(solver.time(), solver.step_count(), solver.accumulators(), uncracked, start);
-  const mpm::PhaseFieldWork before = solver.phase_field_work();
-  EXPECT_FALSE(solver.step());
+  auto result = step_with_work(solver);
   omp_set_num_threads(saved);
-  mpm::PhaseFieldWork work = solver.phase_field_work();
-  work.runs -= before.runs;
-  work.iterations -= before.iterations;
-  work.direct_runs -= before.direct_runs;
-  work.multigrid_solves -= before.multigrid_solves;
-  return {solver.particles(), work};
+  return result;
 }
 
 }  // namespace
