@@ -22,26 +22,34 @@ inline std::int64_t aggregate_coordinate(std::int64_t c) {
 /// λ_max(D⁻¹A), estimated from above. The smoother needs it from above: below λ_max its polynomial
 /// amplifies the top of the spectrum, and the V-cycle is no longer positive definite (with a
 /// power iteration's 10-step estimate, 10 % short on the bilaplacian model of the tests at
-/// n = 257 even with a 10 % margin, the conjugate gradients stalled). Gershgorin's
-/// max_i Σ_j |a_ij| / a_ii is a bound, and exact for the Laplacian's and the bilaplacian's
-/// stencils, but an open crack's rank-one history terms put it far above λ_max (its ratios
-/// |a_ij| / a_ii are those of the B-spline weights, up to 10² at a stencil's edge): on the
-/// cubic plate's branched system it weakened the smoother and the prolongator until the
-/// iterations went from 16 to 153. So: the largest Ritz value of `multigrid_lanczos_steps` Lanczos
-/// steps on D^(-1/2) A D^(-1/2) (similar to D⁻¹A), which approaches λ_max from below far faster
-/// than a power iteration, with a 10 % margin, and never above Gershgorin's bound. The start
-/// vector is fixed, so every run and thread count gets the same bits.
+/// n = 257 even with a 10 % margin, the conjugate gradients stalled). Gershgorin's theorem bounds
+/// it twice: max_i Σ_j |a_ij| / a_ii for D⁻¹A, and max_i Σ_j |a_ij| / √(a_ii a_jj) for the
+/// similar D^(-1/2) A D^(-1/2). Both are exact for the Laplacian's and the bilaplacian's stencils,
+/// but an open crack's rank-one history terms put the first far above λ_max (its ratios
+/// |a_ij| / a_ii are those of the B-spline weights, up to 10² at a stencil's edge; on the cubic
+/// plate's branched system it weakened the smoother and the prolongator until the iterations went
+/// from 16 to 153) and the second, whose terms a positive semi-definite A keeps at most 1, still
+/// about 1.6 times above (anisotropic cracked strip of the tests: 67.6 and 5.39 against 3.49;
+/// the bench's cubic block: 8.41 and 4.91 against 3.03). So: the largest Ritz value of
+/// `multigrid_lanczos_steps` Lanczos steps on D^(-1/2) A D^(-1/2), which approaches λ_max from
+/// below far faster than a power iteration, with a 10 % margin, and never above either bound. The
+/// start vector is fixed, so every run and thread count gets the same bits.
 template <typename Matrix>
 double largest_eigenvalue(const Matrix& A, const Eigen::VectorXd& inverse_diagonal) {
   const Eigen::Index n = A.rows();
-  double bound = 0.0;
-  for (Eigen::Index i = 0; i < A.outerSize(); ++i) {
-    double row = 0.0;
-    for (typename Matrix::InnerIterator it(A, i); it; ++it) row += std::abs(it.value());
-    bound = std::max(bound, row * inverse_diagonal[i]);
-  }
-  if (!(bound > 0.0)) return 1.0;
   const Eigen::VectorXd scale = inverse_diagonal.cwiseSqrt();
+  double bound = 0.0, scaled_bound = 0.0;
+  for (Eigen::Index i = 0; i < A.outerSize(); ++i) {
+    double row = 0.0, scaled_row = 0.0;
+    for (typename Matrix::InnerIterator it(A, i); it; ++it) {
+      row += std::abs(it.value());
+      scaled_row += std::abs(it.value()) * scale[it.index()];
+    }
+    bound = std::max(bound, row * inverse_diagonal[i]);
+    scaled_bound = std::max(scaled_bound, scaled_row * scale[i]);
+  }
+  bound = std::min(bound, scaled_bound);
+  if (!(bound > 0.0)) return 1.0;
   Eigen::VectorXd v(n), previous = Eigen::VectorXd::Zero(n), w(n);
   for (Eigen::Index i = 0; i < n; ++i)
     v[i] = 1.0 + static_cast<double>((static_cast<std::uint64_t>(i) * 2654435761u) % 1024) / 1024.0;

@@ -300,6 +300,29 @@ TEST(ShapeFunctions, EveryKernelConservesMassAndMomentumInParticleToGrid) {
   }
 }
 
+TEST(ShapeFunctions, ReferenceCurvaturesAreTheHessiansSeenThroughF) {
+  // bspline2_reference_curvatures against Fᵀ H F of bspline2_hessians, for sheared and stretched F.
+  const auto g = test_grid();
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 2.0), strain(-0.4, 0.4);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec<2> x(u(rng), u(rng));
+    Mat<2> F;
+    F << 1.0 + strain(rng), strain(rng), strain(rng), 1.0 + strain(rng);
+    std::array<Mat<2>, Stencil<2>::capacity> hessian;
+    bspline2_hessians<2>(x, g, hessian);
+    std::array<Eigen::Vector3d, Stencil<2>::capacity> chi;
+    bspline2_reference_curvatures(x, F, g, chi);
+    for (int e = 0; e < 9; ++e) {
+      const Mat<2> H = F.transpose() * hessian[e] * F;
+      const double size = hessian[e].norm();
+      EXPECT_NEAR(chi[e][0], H(0, 0), 1e-12 * size);
+      EXPECT_NEAR(chi[e][1], H(1, 1), 1e-12 * size);
+      EXPECT_NEAR(chi[e][2], H(0, 1), 1e-12 * size);
+    }
+  }
+}
+
 TEST(ShapeFunctions, QuadraticBsplineHessiansAreTheGradientsDerivatives) {
   // Central differences of the stencil's gradients, inside one knot span (the second derivatives
   // are constant there), against bspline2_hessians; and Σ ∂²S̄ = 0, Σ X ⊗ ∂²S̄ = 0 (a linear field

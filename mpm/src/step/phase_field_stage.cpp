@@ -100,25 +100,6 @@ inline bool has_fourth_order(const PhaseFieldState<D>& pf, std::size_t material)
     return (void)pf, (void)material, false;
 }
 
-/// χ = (∂²S̄/∂X², ∂²S̄/∂Y², ∂²S̄/∂X∂Y) per stencil entry in the reference configuration,
-/// Fᵀ (∂²S̄/∂x∂x) F (the gradient of F within the particle neglected), for the B-spline stencil
-/// at x (same entry order).
-template <int D>
-inline void reference_second_derivatives(const Vec<D>& x, const Mat<D>& F, const GridIndex<D>& grid,
-                                         int count,
-                                         std::array<Eigen::Vector3d, Stencil<D>::capacity>& chi) {
-  if constexpr (D == 2) {
-    std::array<Mat<D>, Stencil<D>::capacity> hessian;
-    bspline2_hessians<D>(x, grid, hessian);
-    for (int e = 0; e < count; ++e) {
-      const Mat<D> H = F.transpose() * hessian[e] * F;
-      chi[e] = Eigen::Vector3d(H(0, 0), H(1, 1), H(0, 1));
-    }
-  } else {
-    (void)x, (void)F, (void)grid, (void)count, (void)chi;
-  }
-}
-
 }  // namespace
 
 template <int D, ShapeFunctionKind Kind>
@@ -270,18 +251,30 @@ void solve_phase_field(StepState<D>& state) {
       }
       return;
     }
-    // The fourth-order term ([KT19] eq. (57), scaled by G_c/(4 l₀)): V G_c l₀³ χ_Iᵀ Γ_g χ_J with χ
+    // The fourth-order term ([KT19] eq. (57), scaled by G_c/(4 l₀)): V G_c l₀³ χ_aᵀ Γ_g χ_b with χ
     // the reference-configuration second derivatives (Fᵀ H F, F taken uniform over the stencil).
-    std::array<Eigen::Vector3d, Stencil<D>::capacity> chi;
-    reference_second_derivatives<D>(P.x[p], P.F[p], grid, s.count, chi);
+    // With v_a = (S̄_a, ∇S̄_a, χ_a) the whole entry is v_aᵀ W v_b, W = diag(local, diffusion I,
+    // V Γ_g) symmetric (Γ_g = Tᵀ γ T, phase_field.cpp): each pair is one 6-term product of
+    // y_a = W v_a with v_b, computed once and added to both rows.
+    std::array<Eigen::Vector3d, Stencil<D>::capacity> chi{};
+    if constexpr (D == 2) bspline2_reference_curvatures(P.x[p], P.F[p], grid, chi);
+    constexpr int terms = 1 + D + 3;
+    std::array<Eigen::Matrix<double, terms, 1>, Stencil<D>::capacity> v, y;
+    const Eigen::Matrix3d curvature_weight = volume * pf.fourth_order[material];
+    for (int a = 0; a < used; ++a) {
+      const Eigen::Vector3d& chi_a = chi[entry_of[a]];
+      v[a] << weight[a], gradient[a], chi_a;
+      y[a] << local * weight[a], diffusion * gradient[a], curvature_weight * chi_a;
+    }
     for (int a = 0; a < used; ++a) {
       double* band_a = pf.band.data() + static_cast<std::size_t>(row[a]) * width + centre;
-      const Eigen::Vector3d chi_a =
-          volume * (pf.fourth_order[material].transpose() * chi[entry_of[a]]);
-      for (int b = 0; b < used; ++b)
-        band_a[place[b] - place[a]] += local * weight[a] * weight[b] +
-                                       diffusion * gradient[a].dot(gradient[b]) +
-                                       chi_a.dot(chi[entry_of[b]]);
+      band_a[0] += y[a].dot(v[a]);
+      for (int b = a + 1; b < used; ++b) {
+        const double entry = y[a].dot(v[b]);
+        const std::int64_t offset = place[b] - place[a];
+        band_a[offset] += entry;
+        pf.band[static_cast<std::size_t>(row[b]) * width + centre - offset] += entry;
+      }
     }
   });
 
@@ -539,7 +532,8 @@ void solve_phase_field(StepState<D>& state) {
       fill_stencil<D, Kind>(P, p, grid, s);
       const std::size_t material = static_cast<std::size_t>(P.material[p]);
       const bool fourth_order = has_fourth_order<D, Kind>(pf, material);
-      if (fourth_order) reference_second_derivatives<D>(P.x[p], P.F[p], grid, s.count, chi);
+      if constexpr (D == 2)
+        if (fourth_order) bspline2_reference_curvatures(P.x[p], P.F[p], grid, chi);
       double value = 0.0;
       Vec<D> gradient = Vec<D>::Zero();
       Eigen::Vector3d curvature = Eigen::Vector3d::Zero();

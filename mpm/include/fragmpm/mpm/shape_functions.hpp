@@ -233,6 +233,32 @@ inline void bspline2_hessians(const Vec<D>& x, const GridIndex<D>& grid,
   }
 }
 
+/// χ = (∂²S̄/∂X², ∂²S̄/∂Y², ∂²S̄/∂X∂Y) of the 2D quadratic B-spline stencil at x in the reference
+/// configuration, Fᵀ (∂²S̄/∂x∂x) F with F taken uniform over the stencil, in the entry order of
+/// bspline2_stencil (e = i + 3 j): the curvatures the fourth-order anisotropic phase field
+/// integrates ([KT19] eq. (51), (57)). The same as bspline2_hessians transformed by F, written out
+/// because the phase-field assembly evaluates it for every particle and step: with
+/// H = [s_x'' s_y, s_x' s_y'; s_x' s_y', s_x s_y''] / h², (Fᵀ H F)_ab = F_0a F_0b H_xx +
+/// (F_0a F_1b + F_1a F_0b) H_xy + F_1a F_1b H_yy.
+inline void bspline2_reference_curvatures(const Vec<2>& x, const Mat<2>& F,
+                                          const GridIndex<2>& grid,
+                                          std::array<Eigen::Vector3d, Stencil<2>::capacity>& chi) {
+  const auto bx = detail::quadratic_bspline_1d((x[0] - grid.origin[0]) * grid.inverse_cell_size);
+  const auto by = detail::quadratic_bspline_1d((x[1] - grid.origin[1]) * grid.inverse_cell_size);
+  const double inverse_area = grid.inverse_cell_size * grid.inverse_cell_size;
+  const Eigen::Vector3d from_xx(F(0, 0) * F(0, 0), F(0, 1) * F(0, 1), F(0, 0) * F(0, 1));
+  const Eigen::Vector3d from_yy(F(1, 0) * F(1, 0), F(1, 1) * F(1, 1), F(1, 0) * F(1, 1));
+  const Eigen::Vector3d from_xy(2.0 * F(0, 0) * F(1, 0), 2.0 * F(0, 1) * F(1, 1),
+                                F(0, 0) * F(1, 1) + F(1, 0) * F(0, 1));
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const double xx = inverse_area * bx.curvature[i] * by.weight[j];
+      const double yy = inverse_area * bx.weight[i] * by.curvature[j];
+      const double xy = inverse_area * bx.slope[i] * by.slope[j];
+      chi[i + 3 * j] = xx * from_xx + yy * from_yy + xy * from_xy;
+    }
+}
+
 /// CPDI ([XLS21] eq. (52)-(53); [HH17] §1.1). The domain is the parallelepiped spanned by the full
 /// edge vectors r_k (columns of `domain`), corners x ± r1/2 ± r2/2. Interpolating the hat N_i
 /// bilinearly between the corner values gives S̄_ip = mean_c N_i(x_c) and, by the divergence theorem
