@@ -1,5 +1,7 @@
 #include "fragmpm/mpm/aggregation_multigrid.hpp"
 
+#include <omp.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -80,6 +82,40 @@ double largest_eigenvalue(const Matrix& A, const Eigen::VectorXd& inverse_diagon
   return std::min(1.1 * ritz, bound);
 }
 
+/// left × right with the rows of the product split into one contiguous block per thread. Eigen's
+/// sparse-sparse product runs on one thread, and the hierarchy's two products per level (A P and
+/// Pᵀ (A P)) were the largest serial part of a step's solve. Each row of the product depends on
+/// the same row of `left` alone and is summed in the same order either way, so the blocks give
+/// the whole product's rows bit for bit, on any number of threads.
+template <typename Left>
+RowMatrix row_parallel_product(const Left& left, const RowMatrix& right) {
+  const Eigen::Index rows = left.rows();
+  const int threads = static_cast<int>(std::min<Eigen::Index>(omp_get_max_threads(), rows / 1024));
+  if (threads <= 1) return RowMatrix(left * right);
+  std::vector<RowMatrix> parts(static_cast<std::size_t>(threads));
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+  for (int t = 0; t < threads; ++t) {
+    const Eigen::Index begin = rows * t / threads, end = rows * (t + 1) / threads;
+    parts[static_cast<std::size_t>(t)] = left.middleRows(begin, end - begin) * right;
+  }
+  Eigen::Index nonzeros = 0;
+  for (const RowMatrix& part : parts) nonzeros += part.nonZeros();
+  RowMatrix product(rows, right.cols());
+  product.resizeNonZeros(nonzeros);
+  int* outer = product.outerIndexPtr();
+  outer[0] = 0;
+  Eigen::Index row = 0, at = 0;
+  for (const RowMatrix& part : parts) {
+    std::copy_n(part.innerIndexPtr(), part.nonZeros(), product.innerIndexPtr() + at);
+    std::copy_n(part.valuePtr(), part.nonZeros(), product.valuePtr() + at);
+    for (Eigen::Index r = 0; r < part.rows(); ++r)
+      outer[row + r + 1] = static_cast<int>(at + part.outerIndexPtr()[r + 1]);
+    row += part.rows();
+    at += part.nonZeros();
+  }
+  return product;
+}
+
 }  // namespace
 
 AggregationMultigrid::RowMap AggregationMultigrid::matrix(std::size_t level) const {
@@ -131,15 +167,19 @@ void AggregationMultigrid::build(Eigen::Index rows, Eigen::Index nonzeros, const
       return Key{fine_fields[static_cast<std::size_t>(i)], aggregate_coordinate(c[2]),
                  aggregate_coordinate(c[1]), aggregate_coordinate(c[0])};
     };
+    std::vector<Key> keys(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) keys[static_cast<std::size_t>(i)] = key_of(i);
     std::vector<int> order(static_cast<std::size_t>(n));
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return key_of(a) < key_of(b); });
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return keys[static_cast<std::size_t>(a)] < keys[static_cast<std::size_t>(b)];
+    });
     std::vector<int> aggregate(static_cast<std::size_t>(n));
     std::vector<std::array<std::int64_t, 3>> coarse_coordinates;
     std::vector<std::int32_t> coarse_fields;
     for (std::size_t k = 0; k < order.size(); ++k) {
-      const Key key = key_of(order[k]);
-      if (k == 0 || key != key_of(order[k - 1])) {
+      const Key& key = keys[static_cast<std::size_t>(order[k])];
+      if (k == 0 || key != keys[static_cast<std::size_t>(order[k - 1])]) {
         coarse_fields.push_back(std::get<0>(key));
         coarse_coordinates.push_back({std::get<3>(key), std::get<2>(key), std::get<1>(key)});
       }
@@ -164,16 +204,16 @@ void AggregationMultigrid::build(Eigen::Index rows, Eigen::Index nonzeros, const
     for (Eigen::Index i = 0; i < n; ++i)
       tentative.insert(i, aggregate[static_cast<std::size_t>(i)]) = 1.0;
     tentative.makeCompressed();
-    RowMatrix smoothing = A * tentative;
+    RowMatrix smoothing = row_parallel_product(A, tentative);
     const double damping = 4.0 / (3.0 * level.largest_eigenvalue);
     for (Eigen::Index i = 0; i < n; ++i)
       for (RowMatrix::InnerIterator it(smoothing, i); it; ++it)
         it.valueRef() *= damping * level.inverse_diagonal[i];
     level.prolongation = tentative - smoothing;
     level.restriction = level.prolongation.transpose();
-    const RowMatrix product = A * level.prolongation;
+    const RowMatrix product = row_parallel_product(A, level.prolongation);
     Level next;
-    next.matrix = level.restriction * product;
+    next.matrix = row_parallel_product(level.restriction, product);
     next.coordinates = std::move(coarse_coordinates);
     next.fields = std::move(coarse_fields);
     levels_.push_back(std::move(next));
