@@ -83,9 +83,10 @@ double largest_eigenvalue(const Matrix& A, const Eigen::VectorXd& inverse_diagon
 }
 
 /// left × right with the rows of the product split into one contiguous block per thread. Eigen's
-/// sparse-sparse product runs on one thread, and the hierarchy's two products per level (A P and
-/// Pᵀ (A P)) were the largest serial part of a step's solve. Each row of the product depends on
-/// the same row of `left` alone and is summed in the same order either way, so the blocks give
+/// sparse-sparse product runs on one thread, and the hierarchy's products per level (A T, A P and
+/// Pᵀ (A P)) took about 6 % of the bench's cubic phase-field step on one thread, all of it
+/// serial (`perf`, with the conversions around them another 3 %). Each row of the product depends
+/// on the same row of `left` alone and is summed in the same order either way, so the blocks give
 /// the whole product's rows bit for bit, on any number of threads.
 template <typename Left>
 RowMatrix row_parallel_product(const Left& left, const RowMatrix& right) {
