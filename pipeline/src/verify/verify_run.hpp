@@ -45,6 +45,16 @@ inline void announce_run(const std::string& what, const mpm::Solver<2>& solver,
                  row.balance_error, 100.0 * row.balance_error / input, input);
   else
     std::fprintf(stderr, "\n");
+  // Which solve a phase-field run's time went to: the multigrid switch happens on its own, once
+  // the crack-block iterations say the system needs it (phase_field_warm_start.hpp).
+  const mpm::PhaseFieldWork& work = solver.phase_field_work();
+  if (work.runs > 0)
+    std::fprintf(stderr,
+                 "    phase field: %lld solves, %lld preconditioned by multigrid, %lld direct, "
+                 "%.1f conjugate-gradient iterations a solve, %.1f s (%.0f %% of the run)\n",
+                 work.runs, work.multigrid_solves, work.direct_runs,
+                 double(work.iterations) / double(work.runs), work.seconds,
+                 wall_seconds > 0.0 ? 100.0 * work.seconds / wall_seconds : 0.0);
 }
 
 struct TimedRun {
