@@ -323,6 +323,35 @@ TEST(ShapeFunctions, ReferenceCurvaturesAreTheHessiansSeenThroughF) {
   }
 }
 
+TEST(ShapeFunctions, BsplineStencilNodesAreTheEntriesWithWeight) {
+  // bspline2_stencil_nodes lists the nodes of bspline2_stencil whose weight or gradient is not
+  // zero, in entry order. At a cell's mid-point (x − x₀ = (k + ½) h) the third node of that
+  // direction sits at the end knot, 1.5 h away, where weight and slope vanish: 6 of 9 entries
+  // remain, and 4 at the mid-point of both directions.
+  const auto g = test_grid();
+  std::mt19937 rng(10);
+  std::uniform_real_distribution<double> u(0.0, 2.0);
+  std::vector<Vec<2>> positions;
+  for (int trial = 0; trial < 50; ++trial) positions.emplace_back(u(rng), u(rng));
+  const Vec<2> mid_x(g.origin[0] + 3.5 * g.cell_size, g.origin[1] + 3.2 * g.cell_size);
+  const Vec<2> mid_xy(g.origin[0] + 3.5 * g.cell_size, g.origin[1] + 2.5 * g.cell_size);
+  positions.push_back(mid_x);
+  positions.push_back(mid_xy);
+  for (const Vec<2>& x : positions) {
+    Stencil<2> s;
+    bspline2_stencil<2>(x, g, s);
+    std::vector<std::int64_t> expected;
+    for (int e = 0; e < s.count; ++e)
+      if (s.weight[e] != 0.0 || s.gradient[e].squaredNorm() != 0.0) expected.push_back(s.node[e]);
+    std::array<std::int64_t, Stencil<2>::capacity> nodes;
+    const int count = bspline2_stencil_nodes<2>(x, g, nodes);
+    ASSERT_EQ(count, static_cast<int>(expected.size()));
+    for (int k = 0; k < count; ++k) EXPECT_EQ(nodes[k], expected[static_cast<std::size_t>(k)]);
+    if (x == mid_x) EXPECT_EQ(count, 6);
+    if (x == mid_xy) EXPECT_EQ(count, 4);
+  }
+}
+
 TEST(ShapeFunctions, QuadraticBsplineHessiansAreTheGradientsDerivatives) {
   // Central differences of the stencil's gradients, inside one knot span (the second derivatives
   // are constant there), against bspline2_hessians; and Σ ∂²S̄ = 0, Σ X ⊗ ∂²S̄ = 0 (a linear field

@@ -46,6 +46,39 @@ void scatter_particles_where(const StepState<D>& state, Keep&& keep, Body&& body
   }
 }
 
+/// Runs body(p, nodes, count) over the particles p with keep(p) in the order of
+/// scatter_particles_where, with the nodes of p's stencil that carry a weight or a gradient.
+template <int D, ShapeFunctionKind Kind, class Keep, class Body>
+void scatter_particle_nodes_where(const StepState<D>& state, Keep&& keep, Body&& body) {
+  if constexpr (Kind == ShapeFunctionKind::bspline2) {
+    const ScatterOrder& order = state.order;
+    const std::int64_t strips = static_cast<std::int64_t>(order.strip_start.size()) - 1;
+#pragma omp parallel
+    {
+      std::array<std::int64_t, Stencil<D>::capacity> nodes;
+      for (std::int64_t parity = 0; parity < 2; ++parity) {
+#pragma omp for schedule(dynamic, 1)
+        for (std::int64_t strip = parity; strip < strips; strip += 2) {
+          for (std::int64_t k = order.strip_start[strip]; k < order.strip_start[strip + 1]; ++k) {
+            const std::int64_t p = order.strip_order[k];
+            if (!keep(p)) continue;
+            body(p, nodes,
+                 bspline2_stencil_nodes<D>(state.problem.particles.x[p], state.grid, nodes));
+          }
+        }
+      }
+    }
+  } else {
+    scatter_particles_where<D, Kind>(state, keep, [&](std::int64_t p, const Stencil<D>& s) {
+      std::array<std::int64_t, Stencil<D>::capacity> nodes;
+      int count = 0;
+      for (int e = 0; e < s.count; ++e)
+        if (s.weight[e] != 0.0 || s.gradient[e].squaredNorm() != 0.0) nodes[count++] = s.node[e];
+      body(p, nodes, count);
+    });
+  }
+}
+
 template <int D, ShapeFunctionKind Kind, bool Offsets = false, class Body>
 void scatter_particles(const StepState<D>& state, Body&& body) {
   scatter_particles_where<D, Kind, Offsets>(

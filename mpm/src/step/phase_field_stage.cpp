@@ -139,18 +139,22 @@ void solve_phase_field(StepState<D>& state) {
   const std::size_t nodes = static_cast<std::size_t>(grid.node_count());
 
   // 1. The bodies that reach each node, in the scatter's fixed order (thread-count independent).
-  //    Should more than `slots` bodies reach one node, this step's bodies share one field.
+  //    Should more than `slots` bodies reach one node, this step's bodies share one field. Only
+  //    the nodes are needed: with whole B-spline stencils, mostly their stores of weights and
+  //    gradients, this pass took 3.6 % of the samples of `fragmpm bench --damage-laws-only` on two
+  //    threads (the assembly 11.5 %), with the nodes alone 2.3 %.
   bool shared = false;
   auto field_of = [&](std::int64_t p) { return shared ? std::int32_t{0} : P.body[p]; };
   for (int attempt = 0; attempt < 2; ++attempt) {
     reset_array(pf.node_body, nodes * K, std::int32_t{-1});
     int overflow = 0;
-    scatter_particles_where<D, Kind>(
-        state, is_phase_field, [&](std::int64_t p, const Stencil<D>& s) {
+    scatter_particle_nodes_where<D, Kind>(
+        state, is_phase_field,
+        [&](std::int64_t p, const std::array<std::int64_t, Stencil<D>::capacity>& reached,
+            int count) {
           const std::int32_t field = field_of(p);
-          for (int e = 0; e < s.count; ++e)
-            if (!empty_entry(s, e) &&
-                !register_field(pf, static_cast<std::size_t>(s.node[e]), field)) {
+          for (int e = 0; e < count; ++e)
+            if (!register_field(pf, static_cast<std::size_t>(reached[e]), field)) {
 #pragma omp atomic write
               overflow = 1;
             }
@@ -181,7 +185,15 @@ void solve_phase_field(StepState<D>& state) {
   for (int k = 0; k < D; ++k) pf.band_width *= 2 * pf.reach + 1;
   const int width = pf.band_width, reach = pf.reach;
   const std::int64_t centre = band_index<D>(IVec<D>::Zero(), reach);
-  reset_array(pf.band, m * static_cast<std::size_t>(width), 0.0);
+  // The band (m × 25 doubles with the B-spline in 2D, 5 MB at 10⁵ particles) is cleared by all
+  // threads: cleared by one, it was about 1 % of the cubic bench row's samples on two threads.
+  size_array(pf.band, m * static_cast<std::size_t>(width));
+  {
+    const std::int64_t band_size = static_cast<std::int64_t>(pf.band.size());
+    double* band = pf.band.data();
+#pragma omp parallel for schedule(static)
+    for (std::int64_t k = 0; k < band_size; ++k) band[k] = 0.0;
+  }
   reset_array(pf.guess_weight, m, 0.0);
   if (pf.rhs.size() != unknowns) {
     pf.rhs.resize(unknowns);
@@ -283,12 +295,14 @@ void solve_phase_field(StepState<D>& state) {
   //    touch) keeps c = 1 (d = 0) through a unit diagonal.
   size_array(pf.outer, m + 1);
   pf.outer[0] = 0;
-  for (std::size_t r = 0; r < m; ++r) {
-    const double* band = pf.band.data() + r * static_cast<std::size_t>(width);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t rr = 0; rr < unknowns; ++rr) {
+    const double* band = pf.band.data() + static_cast<std::size_t>(rr) * width;
     int count = 0;
     for (int b = 0; b < width; ++b) count += band[b] != 0.0;
-    pf.outer[r + 1] = pf.outer[r] + std::max(count, 1);
+    pf.outer[static_cast<std::size_t>(rr) + 1] = std::max(count, 1);
   }
+  for (std::size_t r = 0; r < m; ++r) pf.outer[r + 1] += pf.outer[r];
   const std::size_t nonzeros = static_cast<std::size_t>(pf.outer[m]);
   size_array(pf.inner, nonzeros);
   size_array(pf.values, nonzeros);

@@ -199,6 +199,32 @@ inline void bspline2_stencil(const Vec<D>& x, const GridIndex<D>& grid, Stencil<
   }
 }
 
+/// The nodes of bspline2_stencil whose weight is not zero, in its entry order: nodes[0 … count).
+/// A weight of the B-spline vanishes only at the end knot of its support (|x − x_i| = 1.5 h, where
+/// the slope vanishes as well), so these are the entries that carry a weight or a gradient. For
+/// the loops that only need to know which nodes a particle reaches: filling a whole stencil costs
+/// mostly its stores of weights and gradients.
+template <int D>
+inline int bspline2_stencil_nodes(const Vec<D>& x, const GridIndex<D>& grid,
+                                  std::array<std::int64_t, Stencil<D>::capacity>& nodes) {
+  std::array<detail::QuadraticBspline1d, D> axis;
+  for (int k = 0; k < D; ++k)
+    axis[k] = detail::quadratic_bspline_1d((x[k] - grid.origin[k]) * grid.inverse_cell_size);
+  int total = 1;
+  for (int k = 0; k < D; ++k) total *= 3;
+  int count = 0;
+  for (int e = 0; e < total; ++e) {
+    IVec<D> node;
+    double value = 1.0;
+    for (int k = 0, rest = e; k < D; ++k, rest /= 3) {
+      node[k] = axis[k].first + rest % 3;
+      value *= axis[k].weight[rest % 3];
+    }
+    if (value != 0.0) nodes[count++] = grid.linear(node);
+  }
+  return count;
+}
+
 /// Second derivatives ∂²S̄/∂x∂x of the quadratic B-spline stencil, in the entry order of
 /// bspline2_stencil: per direction the curvature (1, −2, 1)/h² of the three pieces (constant
 /// within a half-cell knot span, the basis being C¹), times the other directions' weights or
