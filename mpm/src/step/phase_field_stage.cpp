@@ -186,7 +186,7 @@ void solve_phase_field(StepState<D>& state) {
   const int width = pf.band_width, reach = pf.reach;
   const std::int64_t centre = band_index<D>(IVec<D>::Zero(), reach);
   // The band (m × 25 doubles with the B-spline in 2D, 5 MB at 10⁵ particles) is cleared by all
-  // threads: cleared by one, it was about 1 % of the cubic bench row's samples on two threads.
+  // threads: cleared by one, it was 0.6 % of the cubic bench rows' samples on two threads.
   size_array(pf.band, m * static_cast<std::size_t>(width));
   {
     const std::int64_t band_size = static_cast<std::int64_t>(pf.band.size());
