@@ -23,6 +23,13 @@ inline void fill_stencil(const Particles<D>& P, std::int64_t p, const GridIndex<
     cpdi_stencil<D, Offsets>(P.x[p], P.domain[p], grid, s);
 }
 
+/// A stencil entry that contributes nothing (zero weight and gradient, e.g. the B-spline's end
+/// knot): the phase field skips it, so it never creates an unknown with an empty row.
+template <int D>
+inline bool empty_entry(const Stencil<D>& s, int e) {
+  return s.weight[e] == 0.0 && s.gradient[e].squaredNorm() == 0.0;
+}
+
 /// Runs visit(p, scratch) over the particles p with keep(p), strip by strip in two parity passes,
 /// so that visits scattering into p's stencil nodes never race; `scratch` is one Scratch per
 /// thread, for the stencil the visit fills.
@@ -70,7 +77,7 @@ void scatter_particle_nodes_where(const StepState<D>& state, Keep&& keep, Body&&
       Nodes nodes;
       int count = 0;
       for (int e = 0; e < s.count; ++e)
-        if (s.weight[e] != 0.0 || s.gradient[e].squaredNorm() != 0.0) nodes[count++] = s.node[e];
+        if (!empty_entry(s, e)) nodes[count++] = s.node[e];
       body(p, nodes, count);
     });
   }

@@ -52,13 +52,6 @@ inline bool register_field(PhaseFieldState<D>& pf, std::size_t node, std::int32_
   return false;
 }
 
-/// A stencil entry that contributes nothing (zero weight and gradient, e.g. the B-spline's end
-/// knot): skipped, so it never creates an unknown with an empty row.
-template <int D>
-inline bool empty_entry(const Stencil<D>& s, int e) {
-  return s.weight[e] == 0.0 && s.gradient[e].squaredNorm() == 0.0;
-}
-
 /// Index of node offset o ∈ [−reach, reach]^D in a row of the band.
 template <int D>
 inline int band_index(const IVec<D>& offset, int reach) {
