@@ -260,7 +260,7 @@ struct Solver<D>::Impl {
     if (!s.problem.walls.empty()) apply_walls(s, dt);
     if (s.plan.books_contact) book_contact_energy(s, dt, friction_before, wall_work_before);
     if constexpr (Thermal) thermal_finish<D, Kind, Partitioned>(s, dt);  // [XLS21] Alg. 1
-    const double kinetic_from_nodes = s.row.kinetic + nodal_kinetic_energy_change(s);
+    const double kinetic_from_nodes = s.row.kinetic + nodal_kinetic_energy_change(s, dt);
     auto failure = grid_to_particles<D, Kind, Partitioned, Thermal, Affine>(s, dt);
     if (!failure) {
       s.totals.transfer_dissipation += kinetic_from_nodes - s.row.kinetic;

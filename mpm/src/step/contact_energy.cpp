@@ -20,8 +20,8 @@
 // So the plastic loss of the collisions is
 //     contact_dissipation += W_walls − friction − Σ_touched (N_i − E_i).
 // The explicit error at the other nodes stays in balance_error; the transfer gap G is booked as
-// transfer_dissipation (transfer_energy.cpp). The FLIP/PIC blend ζ weighs the two forms of N by
-// 1 − ζ and ζ.
+// transfer_dissipation (transfer_energy.cpp), at the contact nodes against the same welded body.
+// The FLIP/PIC blend ζ weighs the two forms of N by 1 − ζ and ζ.
 #include "step/stages.hpp"
 
 namespace fragmpm::mpm {
@@ -52,14 +52,9 @@ void book_contact_energy(StepState<D>& state, double dt, double friction_before,
       energy += (1.0 - pic) * flip + pic * apic;
     }
     if (N.touched[i] & touched_by_wall) continue;
-    double mass = 0.0;
-    Vec<D> force = Vec<D>::Zero();
-    for (int f = 0; f < fields; ++f)
-      if (N.mass[f][i] > state.negligible_mass) {
-        mass += N.mass[f][i];
-        force += N.force[f][i];
-      }
-    if (mass > 0.0) energy += 0.5 * dt * dt * force.squaredNorm() / mass;  // − E_i
+    const WeldedNode<D> welded = welded_node(N, fields, i, state.negligible_mass);
+    if (welded.mass > 0.0)
+      energy += 0.5 * dt * dt * welded.force.squaredNorm() / welded.mass;  // − E_i
   }
   const double friction = state.totals.friction_work - friction_before;
   const double wall_work = state.totals.wall_work - wall_work_before;

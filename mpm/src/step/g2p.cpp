@@ -53,9 +53,9 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   const double cell_size = state.grid.cell_size;
   double kinetic = 0.0, strain = 0.0, gravity_work = 0.0, load_work = 0.0, dissipated = 0.0,
          flowed = 0.0, penalty_work = 0.0, max_speed = 0.0, history_excess = 0.0,
-         free_overlap = 0.0;
-  // Σ_p m_p a_p·Σ_(free i) S̄_ip a_i, the particle half of the transfer's strain-side gap
-  // (transfer_energy.cpp); FLIP only.
+         paired_overlap = 0.0;
+  // Σ_p m_p a_p·Σ_i S̄_ip w_i, the particle half of the transfer's strain-side gap, w the force
+  // increment of strain_side_pairing (transfer_energy.cpp); FLIP only.
   const bool strain_gap = !Affine && state.plan.books_strain_gap;
   const auto& touched = N.touched;
   std::int64_t failed = -1;
@@ -66,7 +66,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
   constexpr std::size_t per_thread = D + A;
   size_array(state.momentum_parts, per_thread * static_cast<std::size_t>(slots));
   std::fill(state.momentum_parts.begin(), state.momentum_parts.end(), 0.0);
-#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated, flowed, penalty_work, history_excess, free_overlap) reduction(max : max_speed)
+#pragma omp parallel reduction(+ : kinetic, strain, gravity_work, load_work, dissipated, flowed, penalty_work, history_excess, paired_overlap) reduction(max : max_speed)
   {
     Stencil<D> s;
     Vec<D> momentum = Vec<D>::Zero();
@@ -75,7 +75,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
 #pragma omp for schedule(static) nowait
     for (std::int64_t p = 0; p < n; ++p) {
       fill_stencil<D, Kind>(P, p, state.grid, s);
-      Vec<D> v_pic = Vec<D>::Zero(), v_change = Vec<D>::Zero(), free_change = Vec<D>::Zero();
+      Vec<D> v_pic = Vec<D>::Zero(), v_change = Vec<D>::Zero(), paired_change = Vec<D>::Zero();
       Mat<D> velocity_gradient = Mat<D>::Zero();
       for (int e = 0; e < s.count; ++e) {
         const std::size_t i = static_cast<std::size_t>(s.node[e]);
@@ -85,11 +85,23 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
         if constexpr (!Affine) {
           const Vec<D> received = s.weight[e] * (velocity - N.velocity_lumped[f][i]);
           v_change += received;
-          if (strain_gap && moves_freely(touched, i)) free_change += received;
+          if (strain_gap) switch (strain_side_pairing(touched, i)) {
+              case StrainSidePairing::own:
+                paired_change += received;
+                break;
+              case StrainSidePairing::welded: {
+                const WeldedNode<D> welded =
+                    welded_node(N, state.fields(), i, state.negligible_mass);
+                paired_change += (s.weight[e] * dt / welded.mass) * welded.force;
+                break;
+              }
+              case StrainSidePairing::none:
+                break;
+            }
         }
         velocity_gradient += velocity * s.gradient[e].transpose();
       }
-      if (strain_gap) free_overlap += P.mass[p] * v_change.dot(free_change);
+      if (strain_gap) paired_overlap += P.mass[p] * v_change.dot(paired_change);
       const Vec<D> displacement = dt * v_pic;
       P.x[p] += displacement;
       if constexpr (Affine) {
@@ -167,7 +179,7 @@ std::optional<NumericalFailure> grid_to_particles(StepState<D>& state, double dt
     for (int k = 0; k < A; ++k)
       state.row.angular_momentum[k] += state.momentum_parts[t * per_thread + D + k];
   }
-  state.strain_gap.particles = 0.5 * free_overlap;
+  state.strain_gap.particles = 0.5 * paired_overlap;
   state.row.kinetic = kinetic;
   state.row.strain = strain;
   state.totals.gravity_work += gravity_work;

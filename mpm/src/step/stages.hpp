@@ -70,7 +70,7 @@ void book_contact_energy(StepState<D>& state, double dt, double friction_before,
 /// transfer's smoothing, booked as transfer_dissipation. With plan.books_strain_gap also fills
 /// strain_gap.nodal, the nodal half of the strain side of that loss. (transfer_energy.cpp)
 template <int D>
-double nodal_kinetic_energy_change(StepState<D>& state);
+double nodal_kinetic_energy_change(StepState<D>& state, double dt);
 
 /// Nodal capacities and temperatures θⁿ, before the grid update. (thermal_stage.cpp)
 template <int D, ShapeFunctionKind Kind, bool Partitioned>

@@ -41,19 +41,29 @@ struct StepPlan {
 /// velocity plus its force increment, as at a node nothing touched.
 inline constexpr std::uint8_t touched_by_contact = 1, touched_by_wall = 2, touched_by_merge = 4;
 
-/// Node i's velocity after contact and walls is its (merged) lumped velocity plus its force
-/// increment: no wall changed it and contact at most merged its fields (transfer_energy.cpp).
-/// touched is empty while the plan books no contact energy: then nothing touched any node.
-inline bool moves_freely(const std::vector<std::uint8_t>& touched, std::size_t i) {
-  if (touched.empty()) return true;
+/// Which force increment the strain side of the transfer gap pairs with the particles'
+/// increments at node i (transfer_energy.cpp). touched is empty while the plan books no contact
+/// energy: then nothing touched any node.
+enum class StrainSidePairing : std::uint8_t {
+  own,     ///< nothing changed the node, or contact merged its fields: a = b, the field's own
+  welded,  ///< a contact exchange: the welded body's Δt Σ f / Σ m, the reference of the explicit
+           ///< error E (contact_energy.cpp)
+  none,    ///< a wall set the velocity: the wall is the reference, nothing to book
+};
+inline StrainSidePairing strain_side_pairing(const std::vector<std::uint8_t>& touched,
+                                             std::size_t i) {
+  if (touched.empty()) return StrainSidePairing::own;
   const std::uint8_t t = touched[i];
-  return !(t & touched_by_wall) && (!(t & touched_by_contact) || (t & touched_by_merge));
+  if (t & touched_by_wall) return StrainSidePairing::none;
+  if ((t & touched_by_contact) && !(t & touched_by_merge)) return StrainSidePairing::welded;
+  return StrainSidePairing::own;
 }
 
-/// The two sums of one step's strain-side transfer gap (transfer_energy.cpp), FLIP only.
+/// The two sums of one step's strain-side transfer gap (transfer_energy.cpp), FLIP only; w is
+/// the force increment of strain_side_pairing.
 struct StrainGapSums {
-  double nodal = 0.0;  ///< Σ over freely moving nodes and fields of ½ m |a|² [J per unit thickness]
-  double particles = 0.0;  ///< ½ Σ_p m_p a_p · Σ_(free i) S̄_ip a_i, filled by G2P
+  double nodal = 0.0;      ///< Σ over nodes and fields of ½ m w·a [J per unit thickness]
+  double particles = 0.0;  ///< ½ Σ_p m_p a_p · Σ_i S̄_ip w_i, filled by G2P
 };
 
 /// Per node and field (field 1 exists only when the step is partitioned).
@@ -69,6 +79,24 @@ struct NodeFields {
   /// step (kept while the plan books contact energy).
   std::vector<std::uint8_t> touched;
 };
+
+/// The mass and force of node i's fields welded into one body (fields lighter than `negligible`
+/// left out).
+template <int D>
+struct WeldedNode {
+  double mass = 0.0;
+  Vec<D> force = Vec<D>::Zero();
+};
+template <int D>
+WeldedNode<D> welded_node(const NodeFields<D>& N, int fields, std::size_t i, double negligible) {
+  WeldedNode<D> node;
+  for (int f = 0; f < fields; ++f)
+    if (N.mass[f][i] > negligible) {
+      node.mass += N.mass[f][i];
+      node.force += N.force[f][i];
+    }
+  return node;
+}
 
 /// Race-free, thread-count-independent scatter: particles binned into strips along direction 0
 /// wider than twice any stencil's reach, so strips of equal parity never share a node. Even strips
