@@ -137,6 +137,21 @@ AggregationMultigrid::RowMap AggregationMultigrid::matrix(std::size_t level) con
 
 void AggregationMultigrid::build(Eigen::Index rows, Eigen::Index nonzeros, const int* outer,
                                  const int* inner, const double* values) {
+  if (reuse_levels && levels_.size() > 1 && rows == fine_rows_) {
+    fine_nonzeros_ = nonzeros;
+    fine_outer_ = outer;
+    fine_inner_ = inner;
+    fine_values_ = values;
+    const RowMap A = matrix(0);
+    Level& level = levels_[0];
+#pragma omp parallel for schedule(static)
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      level.inverse_diagonal[i] = 1.0;
+      for (RowMap::InnerIterator it(A, i); it; ++it)
+        if (it.index() == i && it.value() > 0.0) level.inverse_diagonal[i] = 1.0 / it.value();
+    }
+    return;
+  }
   fine_rows_ = rows;
   fine_nonzeros_ = nonzeros;
   fine_outer_ = outer;

@@ -168,6 +168,10 @@ struct Solver<D>::Impl {
     phase_field_work.direct_runs += state.phase_field->direct ? 1 : 0;
     phase_field_work.multigrid_solves +=
         state.phase_field->multigrid && !state.phase_field->direct ? 1 : 0;
+    phase_field_work.kept_levels +=
+        state.phase_field->multigrid && !state.phase_field->direct && state.phase_field->levels_kept
+            ? 1
+            : 0;
     phase_field_work.stopped_at_limit += state.phase_field->stopped_at_limit ? 1 : 0;
     phase_field_work.past_limit += state.phase_field->went_past_limit ? 1 : 0;
     if (state.phase_field->stopped_at_limit || state.phase_field->went_past_limit)
@@ -436,7 +440,12 @@ void Solver<D>::restore(double time, long long step, const EnergyAccumulators& t
   settle_affine(problem);
   if (impl_->state.thermal) impl_->start_thermal();
   // The constructor's solve (from the scene's initial history) is replaced by the checkpoint's.
-  if (impl_->state.phase_field) impl_->state.phase_field->last = std::move(phase_field);
+  // The multigrid levels the solver holds are not those of the carried system: the next solve
+  // that keeps levels builds them from it (step/phase_field_stage.cpp).
+  if (impl_->state.phase_field) {
+    impl_->state.phase_field->last = std::move(phase_field);
+    impl_->state.phase_field->levels_held = false;
+  }
   impl_->compute_initial_state();
   impl_->state.time = time;
   impl_->state.step = step;

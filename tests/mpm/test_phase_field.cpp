@@ -755,3 +755,79 @@ TEST(PhaseField, MultigridAgreesWithTheDirectSolve) {
   EXPECT_GT(largest, 0.9);
   EXPECT_LT(worst, 1e-5);
 }
+
+TEST(PhaseField, KeptMultigridLevelsAreRebuiltAlikeOnARestart) {
+  // Multigrid levels are built from one step's system and kept while the unknowns stay the same
+  // (keep_multigrid_levels). The warm start carries the system they came from, so a solver
+  // restored from it builds the same levels, and its next step gives the bits of the
+  // uninterrupted run's.
+  mpm::Solver<2> uninterrupted(anisotropic_cracked_strip());
+  uninterrupted.set_phase_field_preconditioner(mpm::PhaseFieldPreconditioner::multigrid);
+  const mpm::PhaseFieldWork before = uninterrupted.phase_field_work();
+  {  // from d = 0, no warm start and the strip stretching, so that every solve has work to do
+    mpm::Particles<2> uncracked = uninterrupted.particles();
+    std::fill(uncracked.damage.begin(), uncracked.damage.end(), 0.0);
+    for (std::size_t p = 0; p < uncracked.size(); ++p)
+      uncracked.v[p] = mpm::Vec<2>(2000.0 * uncracked.x[p][0], 0.0);
+    uninterrupted.restore(0.0, 0, uninterrupted.accumulators(), uncracked, {});
+  }
+  for (int s = 0; s < 3; ++s) {
+    const long long done = uninterrupted.phase_field_work().iterations;
+    ASSERT_FALSE(uninterrupted.step());
+    std::printf("step %d: %lld iterations\n", s + 1,
+                uninterrupted.phase_field_work().iterations - done);
+  }
+  const mpm::PhaseFieldWork three = uninterrupted.phase_field_work();
+  EXPECT_EQ(three.multigrid_solves - before.multigrid_solves, 3);
+  EXPECT_EQ(three.kept_levels - before.kept_levels, 2);  // built by the first, kept by two
+  EXPECT_EQ(three.direct_runs, before.direct_runs);
+  const mpm::PhaseFieldWarmStart<2> carried = uninterrupted.phase_field_warm_start();
+  EXPECT_EQ(carried.levels_age, 3);
+  EXPECT_GT(carried.levels_cycles, 0);
+  ASSERT_EQ(carried.levels_outer.size(), carried.solution.size() + 1);
+  ASSERT_EQ(carried.levels_values.size(), carried.levels_inner.size());
+
+  const double time = uninterrupted.time();
+  const long long step = uninterrupted.step_count();
+  const mpm::EnergyAccumulators accumulators = uninterrupted.accumulators();
+  const mpm::Particles<2> particles = uninterrupted.particles();
+  mpm::Solver<2> restarted(anisotropic_cracked_strip());
+  restarted.set_phase_field_preconditioner(mpm::PhaseFieldPreconditioner::multigrid);
+  restarted.restore(time, step, accumulators, particles, carried);
+  const mpm::PhaseFieldWork restored = restarted.phase_field_work();
+  ASSERT_FALSE(uninterrupted.step());
+  ASSERT_FALSE(restarted.step());
+  EXPECT_EQ(uninterrupted.phase_field_work().kept_levels, three.kept_levels + 1);
+  EXPECT_EQ(restarted.phase_field_work().kept_levels, restored.kept_levels + 1);
+  EXPECT_GT(uninterrupted.phase_field_work().iterations - three.iterations, 0);
+  EXPECT_EQ(restarted.phase_field_work().iterations - restored.iterations,
+            uninterrupted.phase_field_work().iterations - three.iterations);
+  const mpm::Particles<2>& a = uninterrupted.particles();
+  const mpm::Particles<2>& b = restarted.particles();
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t differing = 0;
+  double largest = 0.0;
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    differing += a.damage[p] != b.damage[p] || a.x[p] != b.x[p] ? 1 : 0;
+    largest = std::max(largest, a.damage[p]);
+  }
+  EXPECT_EQ(differing, 0u);
+  EXPECT_GT(largest, 0.9);
+
+  // Without the carried system the restored solver builds levels from its own first system:
+  // the same solution to the tolerance, not to the bit.
+  mpm::Solver<2> rebuilt(anisotropic_cracked_strip());
+  rebuilt.set_phase_field_preconditioner(mpm::PhaseFieldPreconditioner::multigrid);
+  mpm::PhaseFieldWarmStart<2> without = carried;
+  without.levels_outer.clear();
+  without.levels_inner.clear();
+  without.levels_values.clear();
+  rebuilt.restore(time, step, accumulators, particles, without);
+  const mpm::PhaseFieldWork rebuilt_before = rebuilt.phase_field_work();
+  ASSERT_FALSE(rebuilt.step());
+  EXPECT_EQ(rebuilt.phase_field_work().kept_levels, rebuilt_before.kept_levels);
+  double worst = 0.0;
+  for (std::size_t p = 0; p < a.size(); ++p)
+    worst = std::max(worst, std::abs(a.damage[p] - rebuilt.particles().damage[p]));
+  EXPECT_LT(worst, 1e-5);
+}

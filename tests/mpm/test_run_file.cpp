@@ -197,6 +197,13 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   c.phase_field.direct_run = 128;
   c.phase_field.multigrid = 1;
   c.phase_field.average_iterations = 123.25;
+  // The system the kept multigrid levels were built from, in compressed rows over the 2 unknowns.
+  c.phase_field.levels_outer = {0, 2, 3};
+  c.phase_field.levels_inner = {0, 1, 1};
+  c.phase_field.levels_values = {2.0, -1e-300, 1.0 / 3.0};
+  c.phase_field.levels_age = 4;
+  c.phase_field.levels_cycles = 11;
+  c.phase_field.last_cycles = 12;
   run.write_checkpoint(c);
   // A second checkpoint of the same size is written in place: the file does not grow.
   c.particles.x[0](0) += 1.0;
@@ -240,6 +247,28 @@ TEST(RunFile, CheckpointRoundTripIsBitExact) {
   EXPECT_EQ(r->phase_field.direct_run, 128);
   EXPECT_EQ(r->phase_field.multigrid, 1);
   EXPECT_EQ(r->phase_field.average_iterations, 123.25);
+  EXPECT_EQ(r->phase_field.levels_outer, c.phase_field.levels_outer);
+  EXPECT_EQ(r->phase_field.levels_inner, c.phase_field.levels_inner);
+  EXPECT_TRUE(same_bits(r->phase_field.levels_values, c.phase_field.levels_values));
+  EXPECT_EQ(r->phase_field.levels_age, 4);
+  EXPECT_EQ(r->phase_field.levels_cycles, 11);
+  EXPECT_EQ(r->phase_field.last_cycles, 12);
+
+  // A system with a few more entries is written over the last one's space, not beside it.
+  auto with_entries = [&](int entries) {
+    c.phase_field.levels_outer = {0, entries - 1, entries};
+    c.phase_field.levels_inner.assign(static_cast<std::size_t>(entries), 1);
+    c.phase_field.levels_values.assign(static_cast<std::size_t>(entries), 0.5);
+    run.write_checkpoint(c);
+  };
+  with_entries(1000);
+  const auto size_with_1000 = std::filesystem::file_size(path);
+  with_entries(1010);
+  EXPECT_EQ(std::filesystem::file_size(path), size_with_1000);
+  const auto grown = run.read_checkpoint();
+  ASSERT_TRUE(grown.has_value());
+  EXPECT_EQ(grown->phase_field.levels_values.size(), 1010u);
+  EXPECT_EQ(grown->phase_field.levels_outer.back(), 1010);
 
   // The checkpoint survives closing and reopening the file.
   run = RunFile<2>::open_existing(path);

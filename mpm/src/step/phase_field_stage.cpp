@@ -433,27 +433,66 @@ void solve_phase_field(StepState<D>& state) {
     pf.residual = solver.error();
     return solver.info() == Eigen::Success;
   };
+  // Multigrid levels are kept from an earlier step's system while the unknowns are the same and
+  // the solves stay as quick as the first with them (keep_multigrid_levels): the finest level
+  // smooths with this step's K and diagonal, so the V-cycle stays a symmetric operator, and only
+  // its coarse correction is the older system's. Should a solve with kept levels not converge
+  // within three times the V-cycles of the first (the older coarse system no longer fits), the
+  // levels are built from this step's system and the solve starts again from the same guess. The
+  // warm start keeps the system the levels came from, so that a restarted run builds the same.
+  bool multigrid_used = false, levels_built_now = false;
+  int cycles_since_build = 0;
+  const auto build_levels_from = [&](AggregationMultigrid& multigrid, int rows, const int* outer,
+                                     const int* inner, const double* values) {
+    multigrid.reuse_levels = false;
+    multigrid.compute(Eigen::Map<const typename PhaseFieldState<D>::Matrix>(rows, rows, outer[rows],
+                                                                            outer, inner, values));
+  };
   const auto iterate = [&](int limit) {
     if (!pf.multigrid) return run(pf.solver, limit);
     AggregationMultigrid& multigrid = pf.multigrid_solver.preconditioner();
     if (!preconditioned) {
+      multigrid_used = true;
       size_array(multigrid.coordinates, m);
       size_array(multigrid.fields, m);
+      bool same_unknowns = next.node.size() == m;
       for (std::size_t r = 0; r < m; ++r) {
         const IVec<D> node = grid.global(pf.unknown_node[r]);
         std::array<std::int64_t, 3> coordinates{0, 0, 0};
         for (int k = 0; k < D; ++k) coordinates[static_cast<std::size_t>(k)] = node[k];
         multigrid.coordinates[r] = coordinates;
         multigrid.fields[r] = pf.unknown_body[r];
+        same_unknowns =
+            same_unknowns && next.node[r] == node && next.field[r] == pf.unknown_body[r];
+      }
+      pf.levels_kept = keep_multigrid_levels(next, same_unknowns);
+      if (pf.levels_kept && !pf.levels_held)  // a restart: the same levels from the same system
+        build_levels_from(multigrid, static_cast<int>(m), next.levels_outer.data(),
+                          next.levels_inner.data(), next.levels_values.data());
+      multigrid.reuse_levels = pf.levels_kept;
+      levels_built_now = !pf.levels_kept;
+      if (pf.levels_kept) {
+        const int trial = std::min(limit, std::max(30, 3 * static_cast<int>(next.levels_cycles)));
+        const int before = pf.iterations;
+        if (run(pf.multigrid_solver, trial)) return true;
+        limit -= pf.iterations - before;
+        multigrid.reuse_levels = false;
+        preconditioned = false;
+        pf.levels_kept = false;
+        levels_built_now = true;
       }
     }
-    return run(pf.multigrid_solver, limit);
+    const int before = pf.iterations;
+    const bool converged = run(pf.multigrid_solver, limit);
+    cycles_since_build += pf.iterations - before;
+    return converged;
   };
   const auto preconditioner_multiply_adds = [&] {
     return pf.multigrid ? pf.multigrid_solver.preconditioner().multiply_adds()
                         : 2.0 * pf.solver.preconditioner().factor_nonzeros();
   };
   pf.iterations = 0;
+  pf.levels_kept = false;
   pf.stopped_at_limit = false;
   pf.went_past_limit = false;
   if (next.direct_solves_left > 0) {
@@ -500,6 +539,26 @@ void solve_phase_field(StepState<D>& state) {
       (pf.iterations > 0 || !pf.direct) &&
       average_iterations_call_for_multigrid(next.average_iterations, pf.iterations))
     next.multigrid = 1;
+  if (multigrid_used && !pf.direct) {
+    if (levels_built_now) {
+      next.levels_outer = pf.outer;
+      next.levels_inner = pf.inner;
+      next.levels_values = pf.values;
+      next.levels_age = 1;
+      next.levels_cycles = cycles_since_build;
+    } else {
+      ++next.levels_age;
+    }
+    next.last_cycles = pf.iterations;
+    pf.levels_held = true;
+  } else {
+    next.levels_outer.clear();
+    next.levels_inner.clear();
+    next.levels_values.clear();
+    next.levels_age = next.levels_cycles = next.last_cycles = 0;
+    pf.levels_held = false;
+    pf.levels_kept = false;
+  }
   pf.last.node.resize(m);
   pf.last.field.resize(m);
   pf.last.solution.resize(m);

@@ -110,6 +110,10 @@ struct PhaseFieldState {
   /// The same with one multigrid V-cycle as the preconditioner (PhaseFieldWarmStart::multigrid).
   Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, AggregationMultigrid>
       multigrid_solver;
+  /// The multigrid preconditioner holds the levels built from `last.levels_values` (false after a
+  /// restart, until they are built again from it).
+  bool levels_held = false;
+  bool levels_kept = false;  ///< the last multigrid solve kept the levels of an earlier system
   /// The direct solve: K is symmetric, so its compressed rows are also its compressed columns.
   using ColumnMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   CountedLdlt<ColumnMatrix> direct_solver;

@@ -128,7 +128,21 @@ std::vector<DamageCase> damage_cases() {
 /// The cost per step of each damage law on scenes/bench/damage-block.toml at 1e5 particles, and of
 /// the phase-field stage within its step: the stage's own clock (Solver::phase_field_work) against
 /// the rest of the same steps, and against the step without damage.
-int run_damage_laws(bool quick, const std::vector<int>& thread_counts) {
+int run_damage_laws(bool quick, const std::vector<int>& thread_counts,
+                    const std::vector<std::string>& only_laws) {
+  for (const std::string& wanted : only_laws) {
+    const std::vector<DamageCase> cases = damage_cases();
+    if (std::none_of(cases.begin(), cases.end(),
+                     [&](const DamageCase& c) { return wanted == c.label; })) {
+      std::string known;
+      for (const DamageCase& c : cases)
+        known += std::string(known.empty() ? "" : ", ") + "\"" + c.label + "\"";
+      std::fprintf(stderr,
+                   "bench: --law \"%s\" is not a row of the damage-law comparison (rows: %s)\n",
+                   wanted.c_str(), known.c_str());
+      return 2;
+    }
+  }
   const long long target_particles = 100000;
   const int steps = quick ? 60 : 150;
   std::printf(
@@ -140,6 +154,9 @@ int run_damage_laws(bool quick, const std::vector<int>& thread_counts) {
   for (int threads : thread_counts) {
     double undamaged = 0.0;  // [s] per step without damage
     for (const DamageCase& law : damage_cases()) {
+      if (!only_laws.empty() &&
+          std::find(only_laws.begin(), only_laws.end(), law.label) == only_laws.end())
+        continue;
       omp_set_num_threads(threads);
       std::map<std::string, std::string> overrides;
       for (const auto& [key, value] : law.material) overrides["materials[0]." + key] = value;
@@ -276,7 +293,7 @@ int run_peer_scenes(bool quick, const std::vector<int>& thread_counts, int repea
 }
 
 int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_only,
-            bool damage_only) {
+            bool damage_only, const std::vector<std::string>& only_laws) {
   const std::vector<BenchCase> cases =
       quick ? std::vector<BenchCase>{{10000, 50}, {100000, 8}}
             : std::vector<BenchCase>{{10000, 400}, {100000, 60}, {1000000, 8}};
@@ -287,7 +304,7 @@ int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_
   const std::size_t triad_elements = quick ? (std::size_t(1) << 22) : (std::size_t(1) << 24);
   if (repeats <= 0) repeats = quick ? 1 : 3;
   if (peers_only) return run_peer_scenes(quick, thread_counts, repeats, triad_elements);
-  if (damage_only) return run_damage_laws(quick, thread_counts);
+  if (damage_only || !only_laws.empty()) return run_damage_laws(quick, thread_counts, only_laws);
   std::printf(
       "fragmpm bench%s: elastic block (one field) and the same block as two touching bodies "
       "(partitioned contact), CPDI, 2x2 particles per cell, %d core(s)\n",
@@ -330,7 +347,7 @@ int execute(bool quick, std::vector<int> thread_counts, int repeats, bool peers_
   std::printf(
       "bytes/particle-step = triad bandwidth / particle-step rate: the memory traffic one "
       "particle-step is worth on this machine (lower is better, comparable across machines).\n");
-  if (const int code = run_damage_laws(quick, thread_counts)) return code;
+  if (const int code = run_damage_laws(quick, thread_counts, only_laws)) return code;
   return run_peer_scenes(quick, thread_counts, repeats, triad_elements);
 }
 
@@ -342,6 +359,7 @@ void add_bench_command(CLI::App& app, CommandResult& result) {
   auto repeats = std::make_shared<int>(0);
   auto peers_only = std::make_shared<bool>(false);
   auto damage_only = std::make_shared<bool>(false);
+  auto only_laws = std::make_shared<std::vector<std::string>>();
   CLI::App* bench =
       app.add_subcommand("bench", "Particle-steps per second next to a memory-bandwidth reference");
   bench->add_flag("--quick", *quick,
@@ -358,8 +376,13 @@ void add_bench_command(CLI::App& app, CommandResult& result) {
   bench->add_flag("--damage-laws-only", *damage_only,
                   "Only the damage-law comparison (no damage, Rankine, time-to-failure, phase "
                   "field without and with open cracks, at 1e5 particles)");
-  bench->callback([quick, threads, repeats, peers_only, damage_only, &result] {
-    result.exit_code = execute(*quick, *threads, *repeats, *peers_only, *damage_only);
+  bench
+      ->add_option("--law", *only_laws,
+                   "Only these rows of the damage-law comparison, by label (e.g. \"pf cubic, "
+                   "multigrid\"); implies --damage-laws-only")
+      ->delimiter(';');
+  bench->callback([quick, threads, repeats, peers_only, damage_only, only_laws, &result] {
+    result.exit_code = execute(*quick, *threads, *repeats, *peers_only, *damage_only, *only_laws);
   });
 }
 

@@ -74,6 +74,10 @@ class AggregationMultigrid {
   /// and its field. Set before the solver's compute().
   std::vector<std::array<std::int64_t, 3>> coordinates;
   std::vector<std::int32_t> fields;
+  /// Whether the next compute() keeps the levels of the last build: the finest level then takes
+  /// the new system's matrix and diagonal (same unknowns), the coarser levels, the transfers and
+  /// λ_max stay those of the system they were built from.
+  bool reuse_levels = false;
 
   Eigen::Index rows() const { return fine_rows_; }
   Eigen::Index cols() const { return fine_rows_; }

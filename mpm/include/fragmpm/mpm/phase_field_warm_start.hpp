@@ -75,6 +75,27 @@ enum class PhaseFieldPreconditioner { automatic, crack_block, multigrid };
 inline constexpr std::int32_t first_direct_run = 1;
 inline constexpr std::int32_t longest_direct_run = 4096;
 
+/// Solves that may use the multigrid levels built from one system (aggregation_multigrid.hpp)
+/// before they are built afresh. Building them (λ_max by Lanczos, the smoothed prolongators, the
+/// Galerkin products, the coarsest factorisation) took 23 of the 86 ms of the bench's cubic
+/// phase-field stage a step on one thread, more than two solves' V-cycles; a step changes the
+/// system little (H grows by one step's strain, the particles move a fraction of a cell), and
+/// levels kept from the system 20 steps back needed the same 11.3 V-cycles a solve there.
+inline constexpr std::int32_t multigrid_reuse_solves = 20;
+/// A solve with kept levels that needs more than this many times the V-cycles of the first
+/// solve with them, plus one, has the next solve build them afresh: the system has moved away
+/// from the one they were built for (a crack growing through the coarse cells).
+inline constexpr double multigrid_reuse_cycle_growth = 1.25;
+
+/// Whether the next multigrid solve keeps the levels of `last` (the warm start after the last
+/// solve), on unknowns that are the last solve's (`same_unknowns`).
+template <typename WarmStart>
+bool keep_multigrid_levels(const WarmStart& last, bool same_unknowns) {
+  return same_unknowns && !last.levels_values.empty() && last.levels_age < multigrid_reuse_solves &&
+         static_cast<double>(last.last_cycles) <=
+             multigrid_reuse_cycle_growth * static_cast<double>(last.levels_cycles) + 1.0;
+}
+
 template <int D>
 struct PhaseFieldWarmStart {
   std::vector<IVec<D>> node;        ///< global grid node of each unknown
@@ -96,6 +117,16 @@ struct PhaseFieldWarmStart {
   std::int32_t multigrid = 0;
   /// That average so far (average_iterations_call_for_multigrid).
   double average_iterations = 0.0;
+  /// The system (compressed rows over the last solve's unknowns) that the multigrid levels of the
+  /// last solve were built from, empty when the last solve did not iterate with multigrid: a
+  /// restarted run builds the same levels from it and goes on as the uninterrupted run does.
+  std::vector<int> levels_outer, levels_inner;
+  std::vector<double> levels_values;
+  /// Solves that have used those levels (the one that built them included), the V-cycles of the
+  /// first of them and of the last (keep_multigrid_levels).
+  std::int32_t levels_age = 0;
+  std::int32_t levels_cycles = 0;
+  std::int32_t last_cycles = 0;
 
   bool empty() const { return solution.empty(); }
 };

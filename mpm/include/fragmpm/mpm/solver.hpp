@@ -50,6 +50,8 @@ struct PhaseFieldWork {
   long long direct_runs = 0;  ///< solves by sparse LDLᵀ instead of conjugate gradients
   /// conjugate-gradient solves preconditioned by multigrid (the rest: by the crack block)
   long long multigrid_solves = 0;
+  /// of those, the solves that kept the levels built from an earlier step's system
+  long long kept_levels = 0;
   long long reused_orderings = 0;  ///< direct solves that kept the last step's ordering
   /// conjugate-gradient solves stopped at the iteration limit and finished directly (each starts
   /// a run of direct solves, phase_field_warm_start.hpp)
