@@ -120,12 +120,13 @@ int execute(const RunArguments& args) {
                    "last step's ordering; %lld runs of them after conjugate gradients passed "
                    "%d iterations and the cost of a factorisation), %lld past %d iterations and "
                    "converged (a factorisation weighed at up to %.0f iterations), %lld "
-                   "preconditioned by multigrid, %.1f "
+                   "preconditioned by multigrid (%lld with levels kept from an earlier step), %.1f "
                    "conjugate-gradient iterations a solve, %.1f s (%.0f %% of the run)\n",
                    work.runs, work.direct_runs, work.reused_orderings, work.stopped_at_limit,
                    mpm::phase_field_iteration_limit, work.past_limit,
                    mpm::phase_field_iteration_limit, work.factorisation_iterations,
-                   work.multigrid_solves, double(work.iterations) / double(work.runs), work.seconds,
+                   work.multigrid_solves, work.kept_levels,
+                   double(work.iterations) / double(work.runs), work.seconds,
                    result.wall_seconds > 0 ? 100.0 * work.seconds / result.wall_seconds : 0.0);
     const mpm::LostParticles& lost = row.totals.lost;
     if (solver.problem().grid.outside == mpm::OutsidePolicy::remove)

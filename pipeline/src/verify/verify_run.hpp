@@ -50,9 +50,10 @@ inline void announce_run(const std::string& what, const mpm::Solver<2>& solver,
   const mpm::PhaseFieldWork& work = solver.phase_field_work();
   if (work.runs > 0)
     std::fprintf(stderr,
-                 "    phase field: %lld solves, %lld preconditioned by multigrid, %lld direct, "
+                 "    phase field: %lld solves, %lld preconditioned by multigrid (%lld with levels "
+                 "kept from an earlier step), %lld direct, "
                  "%.1f conjugate-gradient iterations a solve, %.1f s (%.0f %% of the run)\n",
-                 work.runs, work.multigrid_solves, work.direct_runs,
+                 work.runs, work.multigrid_solves, work.kept_levels, work.direct_runs,
                  double(work.iterations) / double(work.runs), work.seconds,
                  wall_seconds > 0.0 ? 100.0 * work.seconds / wall_seconds : 0.0);
 }

@@ -22,8 +22,11 @@
 // accelerated Jacobi on [λ_max/30, λ_max]: a polynomial in D⁻¹A, the same before and after the
 // coarse correction, so the V-cycle is a symmetric operator as conjugate gradients need, and it
 // runs on matrix products, which Eigen spreads over threads by rows. The coarsest level (at most
-// `multigrid_coarsest_unknowns`) is factorised. The hierarchy is built from each step's system
-// afresh, so a restarted run repeats the uninterrupted one bit for bit.
+// `multigrid_coarsest_unknowns`) is factorised. The phase-field stage keeps a hierarchy for up to
+// `multigrid_reuse_solves` steps while the unknowns stay the same (`reuse_levels`: the finest
+// level then smooths with the new system and its diagonal, only the coarse correction is the
+// older system's), and its checkpoints carry the system the hierarchy was built from, so that a
+// restarted run builds the same levels and repeats the uninterrupted run bit for bit.
 //
 // Limits. Constants are the only coarse modes, and the bilaplacian also keeps linear functions
 // near its null space: where the fourth-order term dominates, the V-cycles grow with refinement,
