@@ -514,6 +514,23 @@ TEST(PhaseField, DirectSolvesEndAndConjugateGradientsResume) {
   EXPECT_EQ(solver.phase_field_warm_start().direct_run, 0);
 }
 
+namespace {
+
+/// Particles whose d or position differ in any bit between two runs of the same scene, and the
+/// largest d of the first.
+std::size_t particles_differing(const mpm::Particles<2>& a, const mpm::Particles<2>& b,
+                                double& largest) {
+  std::size_t differing = 0;
+  largest = 0.0;
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    differing += a.damage[p] != b.damage[p] || a.x[p] != b.x[p] ? 1 : 0;
+    largest = std::max(largest, a.damage[p]);
+  }
+  return differing;
+}
+
+}  // namespace
+
 TEST(PhaseField, DirectSolveKeepsItsOrderingWhileTheCouplingsHold) {
   // AMD ordering and elimination tree depend on the pattern of K alone, so a step whose unknowns
   // and couplings are the last step's factorises with them again, and must give the bits a fresh
@@ -534,15 +551,9 @@ TEST(PhaseField, DirectSolveKeepsItsOrderingWhileTheCouplingsHold) {
   EXPECT_EQ(work.direct_runs, 3);
   EXPECT_EQ(work.reused_orderings, 2);
   const mpm::Particles<2>& a = uninterrupted.particles();
-  const mpm::Particles<2>& b = restarted.particles();
-  ASSERT_EQ(a.size(), b.size());
-  std::size_t differing = 0;
+  ASSERT_EQ(a.size(), restarted.particles().size());
   double largest = 0.0;
-  for (std::size_t p = 0; p < a.size(); ++p) {
-    differing += a.damage[p] != b.damage[p] || a.x[p] != b.x[p] ? 1 : 0;
-    largest = std::max(largest, a.damage[p]);
-  }
-  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(particles_differing(a, restarted.particles(), largest), 0u);
   EXPECT_GT(largest, 0.99);
 }
 
@@ -803,15 +814,9 @@ TEST(PhaseField, KeptMultigridLevelsAreRebuiltAlikeOnARestart) {
   EXPECT_EQ(restarted.phase_field_work().iterations - restored.iterations,
             uninterrupted.phase_field_work().iterations - three.iterations);
   const mpm::Particles<2>& a = uninterrupted.particles();
-  const mpm::Particles<2>& b = restarted.particles();
-  ASSERT_EQ(a.size(), b.size());
-  std::size_t differing = 0;
+  ASSERT_EQ(a.size(), restarted.particles().size());
   double largest = 0.0;
-  for (std::size_t p = 0; p < a.size(); ++p) {
-    differing += a.damage[p] != b.damage[p] || a.x[p] != b.x[p] ? 1 : 0;
-    largest = std::max(largest, a.damage[p]);
-  }
-  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(particles_differing(a, restarted.particles(), largest), 0u);
   EXPECT_GT(largest, 0.9);
 
   // Without the carried system the restored solver builds levels from its own first system:
