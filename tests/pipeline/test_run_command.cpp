@@ -262,3 +262,13 @@ TEST(RunCommand, RestartAcrossARemovalReproducesUninterruptedRunBitForBit) {
       table.substr(table.rfind('\n', table.size() - 2) + 1);  // the last frame, after the removal
   EXPECT_NE(last_line.find(",1,0.00195"), std::string::npos) << table;
 }
+
+TEST(BenchCommand, UnknownRowOfTheDamageLawComparisonExitsWithCode2) {
+  // `fragmpm bench --law` names rows of the comparison by their label; a label that is none of
+  // them is refused before anything runs, with the labels there are.
+  const fs::path dir = fresh_directory("bench-law");
+  EXPECT_EQ(run_fragmpm("bench --law \"pf cubic\" --threads 1", (dir / "log").string()), 2);
+  const std::string log = read_text((dir / "log").string());
+  EXPECT_NE(log.find("--law \"pf cubic\" is not a row"), std::string::npos) << log;
+  EXPECT_NE(log.find("\"pf cubic, multigrid\""), std::string::npos) << log;
+}
