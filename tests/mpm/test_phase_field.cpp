@@ -836,3 +836,24 @@ TEST(PhaseField, KeptMultigridLevelsAreRebuiltAlikeOnARestart) {
     worst = std::max(worst, std::abs(a.damage[p] - rebuilt.particles().damage[p]));
   EXPECT_LT(worst, 1e-5);
 }
+
+TEST(PhaseField, LevelsAreKeptWhileTheUnknownsHoldAndTheSolvesStayQuick) {
+  // keep_multigrid_levels: levels built from a system are kept for the next solve only when the
+  // unknowns are the last solve's, they have served fewer than multigrid_reuse_solves solves, and
+  // the last solve needed at most 1.25 times the first one's V-cycles, plus one (11 → 14.75).
+  mpm::PhaseFieldWarmStart<2> last;
+  EXPECT_FALSE(mpm::keep_multigrid_levels(last, true));  // no levels carried
+  last.levels_outer = {0, 1};
+  last.levels_inner = {0};
+  last.levels_values = {1.0};
+  last.levels_age = mpm::multigrid_reuse_solves - 1;
+  last.levels_cycles = 11;
+  last.last_cycles = 14;
+  EXPECT_TRUE(mpm::keep_multigrid_levels(last, true));
+  EXPECT_FALSE(mpm::keep_multigrid_levels(last, false));
+  last.last_cycles = 15;
+  EXPECT_FALSE(mpm::keep_multigrid_levels(last, true));
+  last.last_cycles = 14;
+  last.levels_age = mpm::multigrid_reuse_solves;
+  EXPECT_FALSE(mpm::keep_multigrid_levels(last, true));
+}
