@@ -293,6 +293,29 @@ SeriesRow<2> row(long long step) {
   return r;
 }
 
+TEST(RunFile, CheckpointWithLevelsOutsideTheUnknownsIsRefused) {
+  // The system the kept multigrid levels were built from must be compressed rows over the
+  // warm start's unknowns: a column past them is named, not read into a solve.
+  const std::string path = temp_path("checkpoint-levels");
+  auto run = RunFile<2>::create(path, test_meta(), false);
+  Checkpoint<2> c;
+  c.particles = random_particles(5, false, 1);
+  c.phase_field.node = {IVec<2>(0, 0), IVec<2>(1, 0)};
+  c.phase_field.field = {0, 0};
+  c.phase_field.solution = {1.0, 1.0};
+  c.phase_field.levels_outer = {0, 1, 2};
+  c.phase_field.levels_inner = {0, 2};  // unknown 2 of 2
+  c.phase_field.levels_values = {1.0, 1.0};
+  run.write_checkpoint(c);
+  try {
+    run.read_checkpoint();
+    FAIL() << "a column outside the unknowns was accepted";
+  } catch (const RunFileError& error) {
+    EXPECT_NE(std::string(error.what()).find("phase_field_levels"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(RunFile, SeriesAppendAndTruncate) {
   const std::string path = temp_path("series");
   {
