@@ -441,7 +441,7 @@ void Solver<D>::restore(double time, long long step, const EnergyAccumulators& t
   if (impl_->state.thermal) impl_->start_thermal();
   // The constructor's solve (from the scene's initial history) is replaced by the checkpoint's.
   // The multigrid levels the solver holds are not those of the carried system: the next solve
-  // that keeps levels builds them from it (step/phase_field_stage.cpp).
+  // that keeps levels builds them from it (step/phase_field_solve.cpp).
   if (impl_->state.phase_field) {
     impl_->state.phase_field->last = std::move(phase_field);
     impl_->state.phase_field->levels_held = false;

@@ -464,7 +464,7 @@ TEST(PhaseField, ADirectSolveIsNotExtrapolatedFrom) {
   // The solve starts from 2 c − c_previous where both earlier solves had the unknown, but not
   // after a direct solve: its change from the last solution holds what the factorisation did in
   // the directions no particle sees, which the extrapolation would repeat at every later step
-  // (step/phase_field_stage.cpp; on the colliding rings 126 solves stopped at the iteration
+  // (step/phase_field_solve.cpp; on the colliding rings 126 solves stopped at the iteration
   // limit with it, 24 without). An iterative step keeps the last solution as `previous`, a direct
   // one keeps none, and the conjugate gradients that follow start from the direct solution and
   // converge without another factorisation.

@@ -105,7 +105,7 @@ class CrackBlockPreconditioner {
         block_size(), block_size(), static_cast<Eigen::Index>(block_values_.size()),
         block_outer_.data(), block_inner_.data(), block_values_.data());
     // The AMD ordering depends on the block's pattern alone (as the whole system's,
-    // phase_field_stage.cpp): a step with the last step's pattern only refactorises.
+    // phase_field_solve.cpp): a step with the last step's pattern only refactorises.
     if (analysed_outer_ != block_outer_ || analysed_inner_ != block_inner_) {
       factor_.analyzePattern(block);
       analysed_outer_ = block_outer_;

@@ -40,7 +40,7 @@ inline constexpr double phase_field_tolerance = 1e-6;
 /// takes the rings from 400 µs on in 12-70 iterations a step (14 ms, against 58 ms for the
 /// factorisation of the whole system). A solve that reaches `phase_field_iteration_limit`
 /// iterations goes on only while they have cost less than a factorisation of the whole system
-/// would (phase_field_stage.cpp, step 5), then stops and the step factorises it; should the next
+/// would (phase_field_solve.cpp), then stops and the step factorises it; should the next
 /// step's attempt fail as well, the steps after it factorise too, in runs that double
 /// (phase_field_warm_start.hpp). The history only grows, and an earlier version of this stage
 /// factorised for good after the first such solve. But the hard solves come singly: in the
@@ -62,7 +62,7 @@ inline constexpr double phase_field_tolerance = 1e-6;
 /// later solves are preconditioned by a multigrid V-cycle instead (fragmpm/mpm/
 /// aggregation_multigrid.hpp), which the fourth-order term and large cracked grids need.
 /// (The limits are in fragmpm/mpm/phase_field_warm_start.hpp.)
-/// Relative diagonal shift of the direct solve (phase_field_stage.cpp, step 5).
+/// Relative diagonal shift of the direct solve (phase_field_solve.cpp).
 inline constexpr double phase_field_pivot_shift = 1e-12;
 
 template <int D>
@@ -91,6 +91,8 @@ struct PhaseFieldState {
   /// Per unknown: its node (linear index of this step's grid) and body.
   std::vector<std::int64_t> unknown_node;
   std::vector<std::int32_t> unknown_body;
+  /// More bodies than `slots` reached a node this step, so the step's bodies share one field.
+  bool shared_fields = false;
   /// Node offsets o ∈ [−reach, reach]^D that two nodes of one particle's stencil can have; the
   /// rows of the system are first summed per offset (`band`, unknowns × band_width), which the
   /// strip-ordered scatter fills without races, then compressed.

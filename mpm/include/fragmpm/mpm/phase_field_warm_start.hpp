@@ -104,7 +104,7 @@ struct PhaseFieldWarmStart {
   /// c at the same node and field one solve earlier, NaN where that solve had no such unknown
   /// and everywhere when the last solve was direct; empty for checkpoints written before it was
   /// kept. The next solve starts from the linear extrapolation 2 c − c_previous where it is finite
-  /// (step/phase_field_stage.cpp).
+  /// (step/phase_field_solve.cpp).
   std::vector<double> previous;
   /// Solves left that factorise the whole system before conjugate gradients are tried again
   /// (0: the next solve iterates), and the length of the run of direct solves they belong to,
