@@ -27,10 +27,7 @@ void solve_phase_field(StepState<D>& state) {
   PhaseFieldState<D>& pf = *state.phase_field;
   auto& P = state.problem.particles;
   const std::int64_t n = static_cast<std::int64_t>(P.size());
-  const auto& kind_of = state.material_damages;
-  auto is_phase_field = [&](std::int64_t p) {
-    return kind_of[static_cast<std::size_t>(P.material[p])] == material_phase_field;
-  };
+  auto is_phase_field = [&](std::int64_t p) { return has_phase_field(state, p); };
 
   // Without any history the solution is d = 0 (the right-hand side vanishes): no system to solve.
   double largest_history = 0.0;
@@ -54,6 +51,7 @@ void solve_phase_field(StepState<D>& state) {
     return;
   }
 
+  // The parts (phase_field_parts.hpp): unknowns, system, solve, and d back at the particles.
   number_phase_field_unknowns<D, Kind>(state);
   assemble_phase_field_system<D, Kind>(state);
   solve_phase_field_system<D>(state);
