@@ -49,7 +49,7 @@ namespace fragmpm::mpm {
 /// prolongator widens the B-spline's 5-node stencil, and each level's stencil grows); width 3
 /// took 35-43 V-cycles of about half the cost after 0.5 s to build four (complexity 1.12), 1.9-2.3
 /// s a solve against 2.5-3.1 s. With the levels kept over steps the build no longer decides it:
-/// on the bench's cubic block width 2 took 5.0 V-cycles a solve against 11.3, but the stage 62.1
+/// on the bench's cubic block width 2 took 5.0 V-cycles a solve against 11.3, but the stage 61.9
 /// and 42.7 ms a step (one and two threads) against 59.6 and 39.4 ms, its denser cycles costing
 /// what the fewer save.
 inline constexpr int multigrid_aggregate_width = 3;
