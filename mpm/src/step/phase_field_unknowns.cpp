@@ -36,8 +36,8 @@ void number_phase_field_unknowns(StepState<D>& state) {
   //    the nodes are needed: with whole B-spline stencils, mostly their stores of weights and
   //    gradients, this pass took 3.6 % of the samples of `fragmpm bench --damage-laws-only` on two
   //    threads (the assembly 11.5 %), with the nodes alone 2.3 %.
-  bool shared = false;
-  auto field_of = [&](std::int64_t p) { return shared ? std::int32_t{0} : P.body[p]; };
+  pf.shared_fields = false;
+  auto field_of = [&](std::int64_t p) { return field_of_body(pf, P.body[p]); };
   for (int attempt = 0; attempt < 2; ++attempt) {
     reset_array(pf.node_body, nodes * K, std::int32_t{-1});
     int overflow = 0;
@@ -53,7 +53,7 @@ void number_phase_field_unknowns(StepState<D>& state) {
             }
         });
     if (!overflow) break;
-    shared = true;
+    pf.shared_fields = true;
   }
 
   // 2. Unknowns in node order (so the columns of every row come out sorted).
@@ -70,7 +70,6 @@ void number_phase_field_unknowns(StepState<D>& state) {
           static_cast<std::int64_t>(slot / K);
       pf.unknown_body[static_cast<std::size_t>(pf.node_unknown[slot])] = pf.node_body[slot];
     }
-  pf.shared_fields = shared;
 }
 
 #define FRAGMPM_INSTANTIATE(D)                                                            \
